@@ -1,0 +1,44 @@
+// File helpers. Every output bcot writes goes through WriteFileAtomic (temp file in the same
+// directory, fsync, rename), so a killed process never leaves a half-written file behind.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "bcot/core/status.h"
+
+namespace bcot {
+
+StatusOr<std::string> ReadTextFile(const std::string& path);
+
+// Writes `content` to `path` atomically; creates missing parent directories.
+Status WriteFileAtomic(const std::string& path, const std::string& content);
+
+// Creates `path` and its parents (no error if it exists).
+Status CreateDirectories(const std::string& path);
+
+// `relative` resolved against the directory holding `file` (absolute paths pass through).
+std::string ResolveRelativeTo(const std::string& file, const std::string& relative);
+
+// Text helpers shared by the readers.
+
+// Splits `text` at '\n' and drops one trailing '\r' per line (CRLF files). A final line end
+// does not start another line: "a\nb\n" and "a\nb" both give {"a", "b"}. A UTF-8 byte-order
+// mark at the start (files saved by some Windows editors) is dropped.
+std::vector<std::string> SplitLines(const std::string& text);
+
+// Splits at any run of the characters in `separators`; no empty tokens.
+std::vector<std::string> SplitTokens(std::string_view text, std::string_view separators);
+
+// `text` without leading and trailing spaces, tabs and '\r'.
+std::string_view TrimWhitespace(std::string_view text);
+
+// Locale-independent parsing of an entire token (a leading '+' is allowed, nothing else may
+// surround the number). ParseDouble accepts "nan"/"inf"; callers check finiteness. False when
+// the token is not a number or is out of range.
+bool ParseDouble(std::string_view text, double* value);
+bool ParseInt64(std::string_view text, int64_t* value);
+
+}  // namespace bcot

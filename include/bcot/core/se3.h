@@ -1,0 +1,59 @@
+// SO(3) and SE(3) helpers on Eigen types.
+//
+// Conventions (DESIGN.md, "Update in O_o"):
+//   - a twist is δ = (ρ, φ) ∈ R⁶, translation part first, rotation part (axis·angle) last;
+//   - Exp(δ) = [[Exp(φ), J_l(φ)·ρ], [0, 1]] with J_l the left Jacobian of SO(3);
+//   - poses are Eigen::Isometry3d named `target_from_source`, translations in mm.
+// Every function is exact at the identity, uses Taylor series for angles below 1e-3 rad and
+// stays accurate near π (the logarithm goes through a quaternion, not acos of the trace).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+
+namespace bcot {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+// Skew-symmetric matrix v^ with v^·w = v × w.
+Eigen::Matrix3d Hat(const Eigen::Vector3d& v);
+// Inverse of Hat (reads the off-diagonal entries; assumes a skew-symmetric input).
+Eigen::Vector3d Vee(const Eigen::Matrix3d& m);
+// 4×4 matrix of a twist, [[φ^, ρ], [0, 0]].
+Eigen::Matrix4d HatSE3(const Vector6d& twist);
+
+// Rotation exponential (Rodrigues) and logarithm; Log returns φ with |φ| ≤ π.
+Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& phi);
+Eigen::Vector3d LogSO3(const Eigen::Matrix3d& rotation);
+Eigen::Vector3d LogSO3(const Eigen::Quaterniond& rotation);
+
+// Left Jacobian of SO(3), J_l(φ) = Σ (φ^)^k / (k+1)!, and its inverse.
+Eigen::Matrix3d LeftJacobianSO3(const Eigen::Vector3d& phi);
+Eigen::Matrix3d InverseLeftJacobianSO3(const Eigen::Vector3d& phi);
+
+Eigen::Isometry3d ExpSE3(const Vector6d& twist);
+Vector6d LogSE3(const Eigen::Isometry3d& transform);
+
+// Adjoint of T = (R, t) acting on (ρ, φ) twists: Ad_T = [[R, t^R], [0, R]], so that
+// T·Exp(δ)·T⁻¹ = Exp(Ad_T·δ).
+Matrix6d AdjointSE3(const Eigen::Isometry3d& transform);
+
+// Geodesic interpolation a·Exp(s·Log(a⁻¹·b)) for s in [0, 1] (any real s extrapolates).
+Eigen::Isometry3d InterpolateSE3(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
+                                 double s);
+// Rotation-only geodesic interpolation (slerp).
+Eigen::Matrix3d InterpolateSO3(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, double s);
+
+// Angle of the relative rotation between a and b in degrees, in [0, 180].
+double RotationDistanceDeg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b);
+
+// True when R is orthonormal with det +1 within `tolerance` (max abs entry of RᵀR − I).
+// On failure writes a short reason (e.g. "RᵀR deviates from I by 3.2e-02") to `why`.
+bool IsRotationMatrix(const Eigen::Matrix3d& rotation, double tolerance, std::string* why);
+
+// Re-orthonormalises a nearly orthonormal matrix (closest rotation via SVD).
+Eigen::Matrix3d NearestRotation(const Eigen::Matrix3d& matrix);
+
+}  // namespace bcot

@@ -1,0 +1,54 @@
+// The pose parameter block of every bcot problem and its Lie-group manifold.
+//
+// Ambient parameters (7): [qx, qy, qz, qw, tx, ty, tz] = rig_from_objcentre, the rotation as a
+// unit quaternion (Eigen's coefficient order) and the translation in mm. The tangent (6) is a
+// twist δ = (ρ, φ) in the object-centred frame O_o (DESIGN.md, "Update in O_o"; paper eq. 4,
+// S.12–19):
+//
+//   Plus:  T ⊕ δ = T · Exp(δ)          Minus: y ⊖ x = Log(T_x⁻¹ · T_y)
+//
+// so one increment is shared by every view and rotation acts about the object centre.
+// PlusJacobian is ∂(T ⊕ δ)/∂δ at δ = 0 (7×6) and MinusJacobian its left inverse (6×7).
+// A cost function that knows ∂r/∂δ (its "Lie Jacobian") hands Ceres the ambient Jacobian
+// ∂r/∂δ · MinusJacobian(x); Ceres multiplies by PlusJacobian(x) and recovers exactly ∂r/∂δ
+// (see AmbientFromLieJacobian).
+#pragma once
+
+#include <ceres/manifold.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "bcot/core/se3.h"
+
+namespace bcot {
+
+constexpr int kPoseAmbientSize = 7;
+constexpr int kPoseTangentSize = 6;
+
+using PoseParameters = Eigen::Matrix<double, kPoseAmbientSize, 1>;
+
+// Conversions between an isometry and the 7 ambient parameters.
+PoseParameters ToPoseParameters(const Eigen::Isometry3d& transform);
+Eigen::Isometry3d FromPoseParameters(const double* parameters);
+
+// MinusJacobian of the manifold at `parameters`: the 6×7 left inverse of PlusJacobian.
+Eigen::Matrix<double, kPoseTangentSize, kPoseAmbientSize> TangentFromAmbientJacobian(
+    const double* parameters);
+
+// Ambient Jacobian (rows × 7, row-major as Ceres stores it) of a residual whose derivative
+// with respect to the tangent δ is `lie_jacobian` (rows × 6).
+void AmbientFromLieJacobian(const Eigen::Matrix<double, Eigen::Dynamic, 6>& lie_jacobian,
+                            const double* parameters, double* ambient_jacobian_row_major);
+
+class Se3Manifold final : public ceres::Manifold {
+ public:
+  int AmbientSize() const override { return kPoseAmbientSize; }
+  int TangentSize() const override { return kPoseTangentSize; }
+  bool Plus(const double* x, const double* delta, double* x_plus_delta) const override;
+  bool PlusJacobian(const double* x, double* jacobian) const override;
+  bool Minus(const double* y, const double* x, double* y_minus_x) const override;
+  bool MinusJacobian(const double* x, double* jacobian) const override;
+};
+
+}  // namespace bcot

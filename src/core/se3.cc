@@ -1,0 +1,162 @@
+#include "bcot/core/se3.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace bcot {
+namespace {
+
+// Below this angle the closed forms lose digits to cancellation (1 − cos θ, θ − sin θ) and
+// three-term Taylor series are used; their truncation error is O(θ⁶) < 1e-18.
+constexpr double kSmallAngle = 1e-3;
+
+}  // namespace
+
+Eigen::Matrix3d Hat(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(),  //
+      v.z(), 0.0, -v.x(),   //
+      -v.y(), v.x(), 0.0;
+  return m;
+}
+
+Eigen::Vector3d Vee(const Eigen::Matrix3d& m) { return {m(2, 1), m(0, 2), m(1, 0)}; }
+
+Eigen::Matrix4d HatSE3(const Vector6d& twist) {
+  Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
+  m.topLeftCorner<3, 3>() = Hat(twist.tail<3>());
+  m.topRightCorner<3, 1>() = twist.head<3>();
+  return m;
+}
+
+Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& phi) {
+  const double theta2 = phi.squaredNorm();
+  const double theta = std::sqrt(theta2);
+  const Eigen::Matrix3d phi_hat = Hat(phi);
+  double a, b;  // R = I + a·φ^ + b·φ^²
+  if (theta < kSmallAngle) {
+    a = 1.0 - theta2 / 6.0 * (1.0 - theta2 / 20.0);
+    b = 0.5 - theta2 / 24.0 * (1.0 - theta2 / 30.0);
+  } else {
+    a = std::sin(theta) / theta;
+    b = (1.0 - std::cos(theta)) / theta2;
+  }
+  return Eigen::Matrix3d::Identity() + a * phi_hat + b * phi_hat * phi_hat;
+}
+
+Eigen::Vector3d LogSO3(const Eigen::Quaterniond& rotation) {
+  Eigen::Quaterniond q = rotation.normalized();
+  if (q.w() < 0.0) q.coeffs() = -q.coeffs();  // pick the angle in [0, π]
+  const Eigen::Vector3d v = q.vec();
+  const double sin_half = v.norm();
+  if (sin_half < 1e-6) {
+    // θ / sin(θ/2) = 2·atan(s/w)/s ≈ (2/w)·(1 − s²/(3w²)) with s = sin(θ/2).
+    const double w = q.w();
+    return (2.0 / w) * (1.0 - sin_half * sin_half / (3.0 * w * w)) * v;
+  }
+  const double theta = 2.0 * std::atan2(sin_half, q.w());
+  return (theta / sin_half) * v;
+}
+
+Eigen::Vector3d LogSO3(const Eigen::Matrix3d& rotation) {
+  return LogSO3(Eigen::Quaterniond(rotation));
+}
+
+Eigen::Matrix3d LeftJacobianSO3(const Eigen::Vector3d& phi) {
+  const double theta2 = phi.squaredNorm();
+  const double theta = std::sqrt(theta2);
+  const Eigen::Matrix3d phi_hat = Hat(phi);
+  double a, b;  // J = I + a·φ^ + b·φ^²
+  if (theta < kSmallAngle) {
+    a = 0.5 - theta2 / 24.0 * (1.0 - theta2 / 30.0);
+    b = 1.0 / 6.0 - theta2 / 120.0 * (1.0 - theta2 / 42.0);
+  } else {
+    a = (1.0 - std::cos(theta)) / theta2;
+    b = (theta - std::sin(theta)) / (theta2 * theta);
+  }
+  return Eigen::Matrix3d::Identity() + a * phi_hat + b * phi_hat * phi_hat;
+}
+
+Eigen::Matrix3d InverseLeftJacobianSO3(const Eigen::Vector3d& phi) {
+  const double theta2 = phi.squaredNorm();
+  const double theta = std::sqrt(theta2);
+  const Eigen::Matrix3d phi_hat = Hat(phi);
+  double b;  // J⁻¹ = I − ½·φ^ + b·φ^²
+  if (theta < kSmallAngle) {
+    b = 1.0 / 12.0 + theta2 / 720.0 * (1.0 + theta2 / 42.0);
+  } else {
+    const double half = 0.5 * theta;
+    b = (1.0 - half * std::cos(half) / std::sin(half)) / theta2;
+  }
+  return Eigen::Matrix3d::Identity() - 0.5 * phi_hat + b * phi_hat * phi_hat;
+}
+
+Eigen::Isometry3d ExpSE3(const Vector6d& twist) {
+  const Eigen::Vector3d rho = twist.head<3>();
+  const Eigen::Vector3d phi = twist.tail<3>();
+  Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
+  transform.linear() = ExpSO3(phi);
+  transform.translation() = LeftJacobianSO3(phi) * rho;
+  return transform;
+}
+
+Vector6d LogSE3(const Eigen::Isometry3d& transform) {
+  const Eigen::Vector3d phi = LogSO3(Eigen::Matrix3d(transform.linear()));
+  Vector6d twist;
+  twist.head<3>() = InverseLeftJacobianSO3(phi) * transform.translation();
+  twist.tail<3>() = phi;
+  return twist;
+}
+
+Matrix6d AdjointSE3(const Eigen::Isometry3d& transform) {
+  const Eigen::Matrix3d r = transform.linear();
+  Matrix6d adjoint = Matrix6d::Zero();
+  adjoint.topLeftCorner<3, 3>() = r;
+  adjoint.topRightCorner<3, 3>() = Hat(transform.translation()) * r;
+  adjoint.bottomRightCorner<3, 3>() = r;
+  return adjoint;
+}
+
+Eigen::Isometry3d InterpolateSE3(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
+                                 double s) {
+  return a * ExpSE3(s * LogSE3(a.inverse() * b));
+}
+
+Eigen::Matrix3d InterpolateSO3(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, double s) {
+  return a * ExpSO3(s * LogSO3(Eigen::Matrix3d(a.transpose() * b)));
+}
+
+double RotationDistanceDeg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return LogSO3(Eigen::Matrix3d(a.transpose() * b)).norm() * 180.0 / M_PI;
+}
+
+bool IsRotationMatrix(const Eigen::Matrix3d& rotation, double tolerance, std::string* why) {
+  if (!rotation.allFinite()) {
+    if (why) *why = "rotation has non-finite entries";
+    return false;
+  }
+  const double deviation =
+      (rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (deviation > tolerance) {
+    if (why) *why = fmt::format("rotation is not orthonormal: RᵀR deviates from I by {:.3g}", deviation);
+    return false;
+  }
+  const double det = rotation.determinant();
+  if (det < 0.0) {
+    if (why) *why = fmt::format("rotation has determinant {:.3g} (a reflection)", det);
+    return false;
+  }
+  return true;
+}
+
+Eigen::Matrix3d NearestRotation(const Eigen::Matrix3d& matrix) {
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(matrix, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  d(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+  return svd.matrixU() * d * svd.matrixV().transpose();
+}
+
+}  // namespace bcot

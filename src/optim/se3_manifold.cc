@@ -1,0 +1,103 @@
+#include "bcot/optim/se3_manifold.h"
+
+namespace bcot {
+namespace {
+
+using Matrix76 = Eigen::Matrix<double, 7, 6, Eigen::RowMajor>;
+using Matrix67 = Eigen::Matrix<double, 6, 7, Eigen::RowMajor>;
+
+Eigen::Quaterniond QuaternionOf(const double* x) {
+  return Eigen::Quaterniond(x[3], x[0], x[1], x[2]);  // (w, x, y, z) constructor
+}
+
+// Q(q) with q ⊗ p = Q(q)·p, both quaternions in Eigen's coefficient order (x, y, z, w).
+Eigen::Matrix4d LeftProductMatrix(const Eigen::Quaterniond& q) {
+  Eigen::Matrix4d m;
+  m << q.w(), -q.z(), q.y(), q.x(),  //
+      q.z(), q.w(), -q.x(), q.y(),   //
+      -q.y(), q.x(), q.w(), q.z(),   //
+      -q.x(), -q.y(), -q.z(), q.w();
+  return m;
+}
+
+}  // namespace
+
+PoseParameters ToPoseParameters(const Eigen::Isometry3d& transform) {
+  const Eigen::Quaterniond q(transform.linear());
+  PoseParameters parameters;
+  parameters << q.coeffs(), transform.translation();
+  return parameters;
+}
+
+Eigen::Isometry3d FromPoseParameters(const double* parameters) {
+  Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
+  transform.linear() = QuaternionOf(parameters).normalized().toRotationMatrix();
+  transform.translation() = Eigen::Vector3d(parameters[4], parameters[5], parameters[6]);
+  return transform;
+}
+
+bool Se3Manifold::Plus(const double* x, const double* delta, double* x_plus_delta) const {
+  const Eigen::Quaterniond q = QuaternionOf(x).normalized();
+  const Eigen::Map<const Eigen::Vector3d> t(x + 4);
+  const Eigen::Map<const Eigen::Vector3d> rho(delta);
+  const Eigen::Map<const Eigen::Vector3d> phi(delta + 3);
+  // T·Exp(δ) = (R·Exp(φ), t + R·J_l(φ)·ρ).
+  const Eigen::Quaterniond q_new = (q * Eigen::Quaterniond(ExpSO3(phi))).normalized();
+  const Eigen::Vector3d t_new = t + q * (LeftJacobianSO3(phi) * rho);
+  Eigen::Map<Eigen::Vector4d> q_out(x_plus_delta);
+  Eigen::Map<Eigen::Vector3d> t_out(x_plus_delta + 4);
+  q_out = q_new.coeffs();
+  t_out = t_new;
+  return true;
+}
+
+bool Se3Manifold::PlusJacobian(const double* x, double* jacobian) const {
+  const Eigen::Quaterniond q = QuaternionOf(x);
+  Eigen::Map<Matrix76> j(jacobian);
+  j.setZero();
+  // ∂q/∂φ = ½·Q(q)·[I₃; 0] since Exp(φ) ≈ (φ/2, 1); ∂t/∂ρ = R (J_l(0) = I).
+  j.block<4, 3>(0, 3) = 0.5 * LeftProductMatrix(q).leftCols<3>();
+  j.block<3, 3>(4, 0) = q.normalized().toRotationMatrix();
+  return true;
+}
+
+bool Se3Manifold::Minus(const double* y, const double* x, double* y_minus_x) const {
+  const Eigen::Isometry3d x_from_y = FromPoseParameters(x).inverse() * FromPoseParameters(y);
+  // Take the rotation log from the quaternions directly (exact near π, no matrix round trip).
+  const Eigen::Quaterniond q_rel = QuaternionOf(x).normalized().conjugate() *
+                                   QuaternionOf(y).normalized();
+  const Eigen::Vector3d phi = LogSO3(q_rel);
+  Eigen::Map<Eigen::Vector3d> rho_out(y_minus_x);
+  Eigen::Map<Eigen::Vector3d> phi_out(y_minus_x + 3);
+  rho_out = InverseLeftJacobianSO3(phi) * x_from_y.translation();
+  phi_out = phi;
+  return true;
+}
+
+bool Se3Manifold::MinusJacobian(const double* x, double* jacobian) const {
+  Eigen::Map<Matrix67> j(jacobian);
+  j = TangentFromAmbientJacobian(x);
+  return true;
+}
+
+Eigen::Matrix<double, kPoseTangentSize, kPoseAmbientSize> TangentFromAmbientJacobian(
+    const double* parameters) {
+  const Eigen::Quaterniond q = QuaternionOf(parameters);
+  const double norm2 = q.squaredNorm();
+  Eigen::Matrix<double, kPoseTangentSize, kPoseAmbientSize> j;
+  j.setZero();
+  // ∂φ/∂q = 2·[Q(q)ᵀ]₀:₃ / |q|², the left inverse of ½·Q(q)·[I; 0] (Q(q)ᵀQ(q) = |q|²·I);
+  // ∂ρ/∂t = Rᵀ.
+  j.block<3, 4>(3, 0) = (2.0 / norm2) * LeftProductMatrix(q).transpose().topRows<3>();
+  j.block<3, 3>(0, 4) = q.normalized().toRotationMatrix().transpose();
+  return j;
+}
+
+void AmbientFromLieJacobian(const Eigen::Matrix<double, Eigen::Dynamic, 6>& lie_jacobian,
+                            const double* parameters, double* ambient_jacobian_row_major) {
+  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, kPoseAmbientSize, Eigen::RowMajor>> ambient(
+      ambient_jacobian_row_major, lie_jacobian.rows(), kPoseAmbientSize);
+  ambient = lie_jacobian * TangentFromAmbientJacobian(parameters);
+}
+
+}  // namespace bcot

@@ -1,0 +1,164 @@
+// Render and ExtractContour throughput (scripts/bench_render.sh runs this and tabulates it).
+//
+// Scene: a mesh whose image is 40 % of the image height, 640×512 (f = 1000 px) and the same
+// physical camera at 1280×1024 (Camera::Scaled(2)). Meshes: a 10,000-triangle torus (tilted so
+// the silhouette has a hole) and the bundled spool CAD part (1,294 triangles). Each benchmark
+// runs with TBB limited to `threads` (1 = the single-core figure; 2 = scaling on this 2-core
+// machine). Real time is reported, since rendering runs on TBB workers.
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "bcot/render/mesh.h"
+#include "bcot/render/ray_caster.h"
+
+namespace bcot {
+namespace {
+
+constexpr double kImageFractionOfHeight = 0.4;
+
+// Torus around z with `segments_u` × `segments_v` quads (2·u·v triangles).
+Mesh MakeTorus(double major, double minor, int segments_u, int segments_v) {
+  std::vector<Eigen::Vector3f> vertices;
+  std::vector<Eigen::Vector3i> triangles;
+  for (int i = 0; i < segments_u; ++i) {
+    const double u = 2.0 * M_PI * i / segments_u;
+    for (int j = 0; j < segments_v; ++j) {
+      const double v = 2.0 * M_PI * j / segments_v;
+      vertices.emplace_back((major + minor * std::cos(v)) * std::cos(u),
+                            (major + minor * std::cos(v)) * std::sin(u), minor * std::sin(v));
+    }
+  }
+  auto index = [&](int i, int j) { return (i % segments_u) * segments_v + (j % segments_v); };
+  for (int i = 0; i < segments_u; ++i) {
+    for (int j = 0; j < segments_v; ++j) {
+      triangles.emplace_back(index(i, j), index(i + 1, j), index(i + 1, j + 1));
+      triangles.emplace_back(index(i, j), index(i + 1, j + 1), index(i, j + 1));
+    }
+  }
+  return Mesh::FromArrays(std::move(vertices), std::move(triangles));
+}
+
+struct Scene {
+  Mesh mesh;
+  Camera camera;
+  Eigen::Isometry3d cam_from_object = Eigen::Isometry3d::Identity();
+};
+
+// `mesh` is centred; the camera looks at it from the distance where its longest bbox side
+// spans 40 % of the image height, rotated by `rotation`.
+Scene MakeScene(Mesh mesh, int image_height, const Eigen::AngleAxisd& rotation) {
+  Scene scene{std::move(mesh), Camera("bench", 640, 512, 1000.0, 1000.0, 319.5, 255.5), {}};
+  scene.mesh = scene.mesh.Transformed(scene.mesh.objcentre_from_template());
+  if (image_height == 1024) scene.camera = scene.camera.Scaled(2.0);
+  const double distance_mm =
+      scene.mesh.diameter() * scene.camera.fy / (kImageFractionOfHeight * scene.camera.height);
+  scene.cam_from_object.linear() = rotation.toRotationMatrix();
+  scene.cam_from_object.translation() = Eigen::Vector3d(0.0, 0.0, distance_mm);
+  return scene;
+}
+
+Scene SceneFor(const std::string& mesh_name, int image_height) {
+  if (mesh_name == "torus10k") {
+    return MakeScene(MakeTorus(60.0, 20.0, 100, 50), image_height,
+                     Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitX()));
+  }
+  StatusOr<Mesh> spool = Mesh::Load(std::string(BCOT_SOURCE_DIR) + "/data/meshes/spool.off");
+  if (!spool.ok()) {
+    std::fprintf(stderr, "%s\n", spool.status().message().c_str());
+    std::abort();
+  }
+  const Mesh scaled = spool->Transformed(Eigen::Isometry3d::Identity(), 150.0 / spool->diameter());
+  return MakeScene(scaled, image_height,
+                   Eigen::AngleAxisd(0.9, Eigen::Vector3d(1.0, 0.5, 0.2).normalized()));
+}
+
+// `reuse`: render into the same RenderedView every frame (the tracking-loop overload) instead
+// of allocating fresh images.
+void BM_Render(benchmark::State& state, const std::string& mesh_name, int image_height,
+               bool full_image, bool reuse, int threads) {
+  const Scene scene = SceneFor(mesh_name, image_height);
+  const RayCaster caster(scene.mesh);
+  RenderOptions options;
+  if (full_image) options.roi = cv::Rect(0, 0, scene.camera.width, scene.camera.height);
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, threads);
+  double rays = 0.0;
+  RenderedView reused;
+  for (auto _ : state) {
+    RenderedView fresh;
+    RenderedView& view = reuse ? reused : fresh;
+    caster.Render(scene.camera, scene.cam_from_object, options, &view);
+    benchmark::DoNotOptimize(view.depth.data);
+    rays = static_cast<double>(view.mask.total());
+  }
+  const double hits =
+      cv::countNonZero(caster.Render(scene.camera, scene.cam_from_object, options).mask);
+  state.counters["rays"] = rays;
+  state.counters["hit_fraction"] = hits / rays;
+  state.counters["rays_per_second"] =
+      benchmark::Counter(rays * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["tbb_threads"] = threads;
+  state.counters["triangles"] = static_cast<double>(scene.mesh.triangles().size());
+}
+
+void BM_ExtractContour(benchmark::State& state, const std::string& mesh_name, int image_height,
+                       int threads) {
+  const Scene scene = SceneFor(mesh_name, image_height);
+  const RayCaster caster(scene.mesh);
+  const ContourOptions options;
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, threads);
+  double points = 0.0;
+  for (auto _ : state) {
+    const std::vector<ContourPoint> contour =
+        caster.ExtractContour(scene.camera, scene.cam_from_object, options);
+    benchmark::DoNotOptimize(contour.data());
+    points = static_cast<double>(contour.size());
+  }
+  state.counters["points"] = points;
+  state.counters["points_per_second"] =
+      benchmark::Counter(points * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["tbb_threads"] = threads;
+  state.counters["triangles"] = static_cast<double>(scene.mesh.triangles().size());
+}
+
+void RegisterAll() {
+  for (const std::string mesh : {"torus10k", "spool"}) {
+    for (const int height : {512, 1024}) {
+      const std::string size = height == 512 ? "640x512" : "1280x1024";
+      for (const int threads : {1, 2}) {
+        const std::string suffix = "/threads:" + std::to_string(threads);
+        for (const bool full_image : {false, true}) {
+          for (const bool reuse : {false, true}) {
+            const std::string name = "Render/" + mesh + "/" + size +
+                                     (full_image ? "/image" : "/bbox") + (reuse ? "/reuse" : "") +
+                                     suffix;
+            benchmark::RegisterBenchmark(name.c_str(), BM_Render, mesh, height, full_image, reuse,
+                                         threads)
+                ->UseRealTime()
+                ->Unit(benchmark::kMillisecond);
+          }
+        }
+        benchmark::RegisterBenchmark(("ExtractContour/" + mesh + "/" + size + suffix).c_str(),
+                                     BM_ExtractContour, mesh, height, threads)
+            ->UseRealTime()
+            ->Unit(benchmark::kMillisecond);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bcot
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  bcot::RegisterAll();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

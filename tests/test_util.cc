@@ -1,0 +1,74 @@
+#include "test_util.h"
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "bcot/core/se3.h"
+#include "bcot/core/status.h"
+
+namespace bcot::test {
+
+TempDir::TempDir() {
+  std::random_device device;
+  const auto base = std::filesystem::temp_directory_path();
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const auto candidate = base / ("bcot_test_" + std::to_string(device()));
+    if (std::filesystem::create_directory(candidate)) {
+      path_ = candidate.string();
+      return;
+    }
+  }
+  BCOT_CHECK(false && "could not create a temporary directory");
+}
+
+TempDir::~TempDir() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
+std::string SourcePath(const std::string& relative) {
+  return std::string(BCOT_SOURCE_DIR) + "/" + relative;
+}
+
+std::string SharedDataPath(const std::string& relative) {
+  const std::string root = BCOT_SHARED_DATA;
+  if (root.empty() || !std::filesystem::exists(root + "/" + relative)) return "";
+  return root + "/" + relative;
+}
+
+std::string BcotBinary() { return BCOT_BINARY; }
+
+void WriteText(const std::string& path, const std::string& content) {
+  const auto parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+  std::ofstream out(path, std::ios::binary);
+  out << content;
+  BCOT_CHECK(out.good());
+}
+
+int RunCommand(const std::string& command, std::string* output) {
+  const std::string full = command + " 2>&1";
+  FILE* pipe = popen(full.c_str(), "r");
+  BCOT_CHECK(pipe != nullptr);
+  std::array<char, 4096> buffer;
+  std::string text;
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) text.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  if (output != nullptr) *output = text;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return RotationDistanceDeg(a.linear(), b.linear());
+}
+
+double TranslationErrorMm(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return (a.translation() - b.translation()).norm();
+}
+
+}  // namespace bcot::test

@@ -1,0 +1,51 @@
+// Shared test helpers: temporary directories, data paths, pose matchers.
+#pragma once
+
+#include <gmock/gmock.h>
+
+#include <Eigen/Geometry>
+#include <string>
+
+namespace bcot::test {
+
+// A fresh directory under the system temp dir, removed (recursively) on destruction.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::string& path() const { return path_; }
+  std::string File(const std::string& name) const { return path_ + "/" + name; }
+
+ private:
+  std::string path_;
+};
+
+// Project source root (for bundled data/ and configs/).
+std::string SourcePath(const std::string& relative);
+// Path inside ../shared/data, or "" when that folder is absent (tests then GTEST_SKIP).
+std::string SharedDataPath(const std::string& relative);
+// Path of the built `bcot` binary.
+std::string BcotBinary();
+
+// Writes `content` to `path` (creating parent directories); CHECK-fails on error.
+void WriteText(const std::string& path, const std::string& content);
+
+// Runs a shell command, returns its exit code; stdout+stderr go to `output` when non-null.
+int RunCommand(const std::string& command, std::string* output = nullptr);
+
+// Rotation (deg) and translation (mm) distance between two poses.
+double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+double TranslationErrorMm(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+
+MATCHER_P3(PoseNear, expected, max_deg, max_mm,
+           "pose within " + ::testing::PrintToString(max_deg) + " deg and " +
+               ::testing::PrintToString(max_mm) + " mm") {
+  const double deg = RotationErrorDeg(arg, expected);
+  const double mm = TranslationErrorMm(arg, expected);
+  *result_listener << "rotation error " << deg << " deg, translation error " << mm << " mm";
+  return deg <= max_deg && mm <= max_mm;
+}
+
+}  // namespace bcot::test

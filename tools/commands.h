@@ -1,0 +1,25 @@
+// The `bcot` subcommands. Each lives in its own <name>_command.cc, registers its CLI11
+// subcommand and options here, and stores its exit code (0 ok, 1 runtime failure, 2 usage
+// or config error) in `*exit_code` when it runs. A command's body is short: parse, load,
+// call one library entry point, print the summary.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace bcot::tools {
+
+void AddSynthCommand(CLI::App& app, int* exit_code);
+
+// Common flags of commands that read a YAML config: --config FILE, --set key=value (repeatable).
+struct ConfigFlags {
+  std::string config_path;
+  std::vector<std::string> overrides;
+};
+void AddConfigFlags(CLI::App* command, ConfigFlags* flags);
+
+// Prints "bcot <command>: error: <message>" on stderr (one line).
+void PrintError(const std::string& command, const std::string& message);
+
+}  // namespace bcot::tools

@@ -1,0 +1,37 @@
+// bcot: one binary, one subcommand per tool (like `colmap <command>`).
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "commands.h"
+
+namespace bcot::tools {
+
+void AddConfigFlags(CLI::App* command, ConfigFlags* flags) {
+  command->add_option("--config", flags->config_path, "YAML configuration file")
+      ->check(CLI::ExistingFile);
+  command->add_option("--set", flags->overrides,
+                      "Override one option, e.g. --set render.width=640 (repeatable)");
+}
+
+void PrintError(const std::string& command, const std::string& message) {
+  std::fprintf(stderr, "bcot %s: error: %s\n", command.c_str(), message.c_str());
+}
+
+}  // namespace bcot::tools
+
+int main(int argc, char** argv) {
+  CLI::App app{"bcot: multi-view 6DoF pose annotation for textureless objects"};
+  app.set_version_flag("--version", BCOT_VERSION);
+  app.require_subcommand(1);
+  int exit_code = 0;
+  bcot::tools::AddSynthCommand(app, &exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int code = app.exit(error);  // prints help/version or the usage error
+    return code == 0 ? 0 : 2;
+  }
+  return exit_code;
+}
