@@ -27,6 +27,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = 0;
   bcot::tools::AddSynthCommand(app, &exit_code);
+  bcot::tools::AddExportCommand(app, &exit_code);
+  bcot::tools::AddEvalCommand(app, &exit_code, /*tracker_factory=*/{});
+  bcot::tools::AddCalibrateCommand(app, &exit_code);
+  bcot::tools::AddCaptureCommand(app, &exit_code);
+  bcot::tools::AddAnnotateCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -120,7 +120,7 @@ void TraceGrid(RTCScene scene, const RayFrame& frame, const Camera& camera, cons
           }
           for (int col0 = 0; col0 < grid.cols; col0 += 4) {
             RTCRayHit8 packet;
-            int valid[8];
+            alignas(32) int valid[8];  // Embree requires the valid mask 32-byte aligned
             for (int lane = 0; lane < 8; ++lane) {
               const int col = col0 + (lane & 3);
               const int row = row0 + (lane >> 2);

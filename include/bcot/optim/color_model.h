@@ -1,0 +1,167 @@
+// Per-view colour models: foreground/background RGB histograms that give every pixel the
+// posteriors P_f(x), P_b(x) of the region energy (DESIGN.md "Region energy", eq. 5–6, and
+// "Colour model"; paper §3.2 after RBOT).
+//
+// Posteriors. With h_f, h_b the normalised histograms (likelihoods p(y | foreground),
+// p(y | background), each summing to 1) and y the pixel's colour bin:
+//
+//   P_f(y) = h_f(y) / (h_f(y) + h_b(y)),   P_b(y) = 1 − P_f(y),   both ½ when h_f = h_b = 0.
+//
+// This is RBOT's P_f = h_f / (η_f h_f + η_b h_b) with equal priors η_f = η_b = ½, rescaled so
+// that P_f + P_b = 1. We choose the normalised form on purpose: the region energy
+// F = −log(He·P_f + (1 − He)·P_b) only depends on the ratio h_f/h_b through its pose
+// gradient, but its value enters the Gauss-Newton weights of both residual forms (√(2F) needs
+// F ≥ 0, the IRLS form weighs by 1/F). Normalised posteriors keep He·P_f + (1 − He)·P_b in
+// [0, 1], so F ≥ 0 and its scale does not depend on how large the sampled areas were.
+//
+// Temporal blending. The first Update sets the histograms, every later one blends
+// h ← (1 − α)·h + α·h_new with α = learning_rate_foreground / _background (RBOT: 0.1 / 0.2).
+//
+// Two kinds (ColorModelOptions::kind):
+//   global: one histogram pair per view. Foreground samples are the pixels inside the
+//           rendered silhouette, background samples the pixels outside it within
+//           background_band_px of it.
+//   local:  RBOT's temporally consistent local colour histograms (tclc). Circular regions of
+//           radius local_region_radius_px centred on contour points (one every
+//           local_region_spacing_px along the contour), each with its own histogram pair
+//           learned from the pixels inside it (mask → foreground, else background). A region
+//           is anchored to the model point (O_t) of the contour point that created it; a
+//           later contour point reuses the region with the nearest anchor within
+//           local_anchor_fraction × object diameter, so the same part of the object finds its
+//           own histograms again in later frames (temporal consistency). A pixel's
+//           posterior is the average of P_f over the regions of the last Update covering it;
+//           pixels no region covers fall back to a global model kept alongside.
+//           Memory: 2·bins³ floats per region ever seen (256 KiB at 32 bins).
+//
+// Image: 8-bit, 3 channels, any channel order as long as it is the same in Update and
+// ForegroundPosteriors. Thread safety: const methods may run concurrently; Update may not.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "bcot/core/status.h"
+#include "bcot/optim/silhouette.h"
+
+namespace bcot {
+
+enum class ColorModelKind { kGlobal, kLocal };
+
+struct ColorModelOptions {
+  ColorModelKind kind = ColorModelKind::kGlobal;
+  // Histogram bins per RGB channel; must divide 256 (1, 2, 4, ..., 256). bins³ bins in all.
+  int bins_per_channel = 32;
+  // Temporal blending weights of new histograms, in (0, 1]; 1 = forget the past.
+  double learning_rate_foreground = 0.1;
+  double learning_rate_background = 0.2;
+  // Global model (and the local model's fallback): background samples are pixels outside the
+  // silhouette within this distance (px) of it; > 0.
+  int background_band_px = 40;
+  // Both models: pixels within this distance (px) of the silhouette boundary are not sampled
+  // on either side, so mixed (anti-aliased, blurred) edge pixels and
+  // a pose a few pixels off do not teach one side the other's colours; >= 0.
+  double sample_margin_px = 2.0;
+  // Local model: radius (px) of the circular regions; > 0.
+  double local_region_radius_px = 40.0;
+  // Local model: arc-length spacing (px) of region centres along the contour; > 0.
+  double local_region_spacing_px = 20.0;
+  // Local model: a contour point reuses the region whose anchor model point is within this
+  // fraction of the object diameter (nearest first), else it creates one; in (0, 1].
+  double local_anchor_fraction = 0.05;
+
+  // Lists every violation (field, value, rule) in one kInvalidConfig status.
+  Status Validate() const;
+};
+
+// A normalised foreground/background histogram pair with temporal blending.
+class ColorHistograms {
+ public:
+  explicit ColorHistograms(int bins_per_channel);
+
+  int Bin(const cv::Vec3b& color) const;
+  // Builds normalised histograms from the given sample bins and sets (first call) or blends
+  // them in. A side without samples keeps its previous histogram. Returns false (no change)
+  // when both sides are empty.
+  bool Update(const std::vector<int>& foreground_bins, const std::vector<int>& background_bins,
+              double learning_rate_foreground, double learning_rate_background);
+  // P_f for a bin (½ when never seen by either side or before the first Update).
+  double ForegroundPosterior(int bin) const;
+  // True when both sides have been learned at least once.
+  bool initialized() const { return foreground_initialized_ && background_initialized_; }
+  const std::vector<float>& foreground() const { return foreground_; }
+  const std::vector<float>& background() const { return background_; }
+
+ private:
+  int bins_per_channel_;
+  int bin_width_;
+  std::vector<float> foreground_;
+  std::vector<float> background_;
+  bool foreground_initialized_ = false;
+  bool background_initialized_ = false;
+};
+
+class ColorModel {
+ public:
+  virtual ~ColorModel() = default;
+  // Learns from `image` (camera size) with the object at `silhouette` (mask and contour of
+  // the same view). Sets the histograms on the first call, blends afterwards.
+  virtual void Update(const cv::Mat3b& image, const Silhouette& silhouette) = 0;
+  // P_f at each pixel (integer coordinates inside the image; CHECKed). P_b = 1 − P_f.
+  virtual std::vector<double> ForegroundPosteriors(
+      const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const = 0;
+  // True once an Update saw both foreground and background samples.
+  virtual bool initialized() const = 0;
+};
+
+class GlobalColorModel final : public ColorModel {
+ public:
+  // `options` must be valid (CHECKed).
+  explicit GlobalColorModel(const ColorModelOptions& options);
+  void Update(const cv::Mat3b& image, const Silhouette& silhouette) override;
+  std::vector<double> ForegroundPosteriors(
+      const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const override;
+  bool initialized() const override { return histograms_.initialized(); }
+  const ColorHistograms& histograms() const { return histograms_; }
+
+ private:
+  ColorModelOptions options_;
+  ColorHistograms histograms_;
+};
+
+class LocalColorModel final : public ColorModel {
+ public:
+  // `options` must be valid (CHECKed); `object_diameter_mm` > 0 scales the anchor radius.
+  LocalColorModel(const ColorModelOptions& options, double object_diameter_mm);
+  void Update(const cv::Mat3b& image, const Silhouette& silhouette) override;
+  std::vector<double> ForegroundPosteriors(
+      const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const override;
+  bool initialized() const override { return fallback_.initialized(); }
+
+  // Regions of the last Update (centre in the image) and the number ever learned.
+  struct ActiveRegion {
+    Eigen::Vector2d centre;  // image position (the contour point)
+    int region = 0;          // index into the learned regions
+  };
+  const std::vector<ActiveRegion>& active_regions() const { return active_; }
+  int num_regions() const { return static_cast<int>(regions_.size()); }
+
+ private:
+  struct Region {
+    Eigen::Vector3d anchor_in_template;
+    ColorHistograms histograms;
+  };
+
+  ColorModelOptions options_;
+  double anchor_radius_mm_;
+  GlobalColorModel fallback_;
+  std::vector<Region> regions_;
+  std::vector<ActiveRegion> active_;
+};
+
+// The model `options.kind` asks for. `options` must be valid (CHECKed).
+std::unique_ptr<ColorModel> MakeColorModel(const ColorModelOptions& options,
+                                           double object_diameter_mm);
+
+}  // namespace bcot

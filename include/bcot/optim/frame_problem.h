@@ -1,0 +1,128 @@
+// One frame, all views: the joint region energy of DESIGN.md "Joint energy" (paper eq. 7–8,
+// S.20–22) minimised by Ceres over ONE parameter block rig_from_objcentre (Se3Manifold, the
+// object-centred update of eq. 4), coarse to fine and then in rounds (DESIGN.md "Rounds";
+// supplement §C.1: annotation 5 rounds × 7 iterations):
+//
+//   for level l = levels−1 .. 1, then `rounds` times at level 0:
+//     every view: ray-cast the silhouette at the current pose (Embree), build its
+//                 RegionTemplate (band, posteriors), add its RegionCostFunction
+//     Ceres: `iterations` Levenberg-Marquardt iterations on Σ_views w_v · Σ_x F(x)
+//     (level 0) stop early when the round moved the pose less than the round tolerances
+//
+// Pyramid. Level l samples the energy at scale 2^l: pixels every stride_px·2^l, band
+// band_px·2^l, Heaviside slope heaviside_slope / 2^l, all in full-resolution coordinates.
+// This is the coarse-to-fine schedule of RBOT's image pyramid in the quantities that matter
+// (capture range grows with the band, pixel count falls by 2^l, the energy is smoother) but
+// keeps the colour posteriors at capture resolution: the image is never resampled, so the
+// colour model learned at full resolution applies at every level unchanged. The coarse levels
+// only bring the pose into the band of level 0: a smoother energy has a slightly different
+// minimum (measured 0.2° on a bunny at level 2), so they run once, before the rounds, never
+// between them.
+//
+// Monocular tracking is the same code with one view. Failure is data: the Summary says what
+// happened; the pose is only written when the solve produced a finite energy.
+//
+// Thread safety: Solve is const; one FrameProblem may serve several threads as long as each
+// passes its own views and pose.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "bcot/core/camera.h"
+#include "bcot/core/status.h"
+#include "bcot/optim/color_model.h"
+#include "bcot/optim/region_cost.h"
+#include "bcot/optim/region_template.h"
+#include "bcot/render/ray_caster.h"
+
+namespace bcot {
+
+struct FrameProblemOptions {
+  // Rounds at full resolution (each re-renders the templates at the current pose); >= 1.
+  // Annotation: 5.
+  int rounds = 5;
+  // Ceres iterations per coarse level and per round; >= 1. Annotation: 7.
+  int iterations = 7;
+  // Pyramid levels (see the header comment); in [1, 6]. 1 = full resolution only; L runs
+  // levels L−1..1 once before the rounds.
+  int pyramid_levels = 3;
+  // Stop after a round that moved the pose by less than both tolerances (rotation in degrees,
+  // translation in mm); >= 0, 0 = always run every round.
+  double round_tolerance_deg = 1e-4;
+  double round_tolerance_mm = 1e-3;
+  // Band, stride and contour sampling of the templates at level 0.
+  RegionTemplateOptions region;
+  // Residual form, Heaviside slope (at level 0) and probability floor. Its view_weight is
+  // ignored: each FrameView carries its own weight.
+  RegionCostOptions cost;
+  // Threads Ceres may use to evaluate residuals; >= 1.
+  int num_threads = 1;
+  // Lists every violation (field, value, rule) in one kInvalidConfig status.
+  Status Validate() const;
+};
+
+// One view of a frame. Non-owning: everything must outlive the Solve call.
+struct FrameView {
+  const Camera* camera = nullptr;
+  Eigen::Isometry3d cam_from_rig = Eigen::Isometry3d::Identity();
+  const cv::Mat3b* image = nullptr;  // camera->width × camera->height
+  const ColorModel* color_model = nullptr;
+  double weight = 1.0;  // w_v >= 0 of eq. 8
+};
+
+enum class FrameTermination {
+  kConverged,       // a round moved the pose by less than the round tolerances
+  kMaxRounds,       // every round ran
+  kNotVisible,      // no view had a single band pixel at some level: pose left as it was
+  kSolverFailure,   // Ceres reported failure or the energy was not finite: pose left as it was
+};
+
+const char* FrameTerminationName(FrameTermination termination);
+
+struct FrameViewSummary {
+  int pixels = 0;       // band pixels of the view at level 0 in the last round
+  double energy = 0.0;  // w·Σ F of the view at the final pose (level 0 template of the last round)
+};
+
+struct FrameSummary {
+  FrameTermination termination = FrameTermination::kMaxRounds;
+  int rounds = 0;              // full-resolution rounds run
+  int iterations = 0;          // Ceres iterations over all levels and rounds
+  double initial_energy = 0.0;  // Σ views, level 0 template of round 1 at its start pose
+  double final_energy = 0.0;    // Σ views at the final pose, level 0 template of the last round
+  double last_round_rotation_deg = 0.0;   // pose change made by the last round
+  double last_round_translation_mm = 0.0;
+  std::vector<FrameViewSummary> views;    // in the order of the FrameView list
+  std::string message;                    // why, when not kConverged / kMaxRounds
+
+  // The pose is a solve result (not left unchanged by a failure).
+  bool usable() const {
+    return termination == FrameTermination::kConverged ||
+           termination == FrameTermination::kMaxRounds;
+  }
+};
+
+class FrameProblem {
+ public:
+  // `caster` (the object's mesh) must outlive the problem; `options` must be valid (CHECKed:
+  // validate user input with FrameProblemOptions::Validate first).
+  FrameProblem(const RayCaster& caster, const FrameProblemOptions& options);
+
+  // Minimises the joint energy starting from *rig_from_objcentre and writes the result there
+  // (unless !summary.usable()). Views with weight 0 or the object out of view contribute no
+  // residuals. CHECKs that views are complete and images match their cameras.
+  FrameSummary Solve(const std::vector<FrameView>& views,
+                     Eigen::Isometry3d* rig_from_objcentre) const;
+
+  const FrameProblemOptions& options() const { return options_; }
+
+ private:
+  const RayCaster& caster_;
+  FrameProblemOptions options_;
+};
+
+}  // namespace bcot

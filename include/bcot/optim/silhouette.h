@@ -1,0 +1,34 @@
+// The projected silhouette of the object in one view at one pose: the full-image mask and the
+// sub-pixel contour. It is the sample set of the colour models (which pixels are foreground,
+// which background, where the contour regions sit) and the geometry of the region template.
+//
+// Frames: `cam_from_template` maps the mesh's template frame O_t to the camera (mm); contour
+// model points are in O_t as RayCaster returns them. Pixel centres at integer coordinates.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "bcot/core/camera.h"
+#include "bcot/render/ray_caster.h"
+
+namespace bcot {
+
+struct Silhouette {
+  // camera.height × camera.width; 255 where the pixel centre's ray hits the mesh.
+  cv::Mat1b mask;
+  // The render the mask was pasted from (projected bounding box, one sample per pixel):
+  // point_in_object (O_t) of every inside pixel.
+  RenderedView view;
+  // Sub-pixel contour (outer boundaries and holes), outward normals, exact model points.
+  std::vector<ContourPoint> contour;
+};
+
+// Renders the silhouette. `contour_options` must be valid (CHECKed by the ray caster). An
+// object outside the image or behind the camera gives an all-zero mask and no contour.
+Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
+                            const Eigen::Isometry3d& cam_from_template,
+                            const ContourOptions& contour_options = {});
+
+}  // namespace bcot

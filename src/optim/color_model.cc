@@ -1,0 +1,263 @@
+#include "bcot/optim/color_model.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <string>
+
+#include "violations.h"
+
+namespace bcot {
+
+Status ColorModelOptions::Validate() const {
+  std::vector<std::string> violations;
+  if (kind != ColorModelKind::kGlobal && kind != ColorModelKind::kLocal) {
+    violations.push_back(fmt::format("kind = {}, must be global or local", static_cast<int>(kind)));
+  }
+  if (bins_per_channel < 1 || bins_per_channel > 256 || 256 % bins_per_channel != 0) {
+    violations.push_back(fmt::format("bins_per_channel = {}, must divide 256 (1, 2, 4, ..., 256)",
+                                     bins_per_channel));
+  }
+  if (!(learning_rate_foreground > 0.0 && learning_rate_foreground <= 1.0)) {
+    violations.push_back(
+        fmt::format("learning_rate_foreground = {}, must be in (0, 1]", learning_rate_foreground));
+  }
+  if (!(learning_rate_background > 0.0 && learning_rate_background <= 1.0)) {
+    violations.push_back(
+        fmt::format("learning_rate_background = {}, must be in (0, 1]", learning_rate_background));
+  }
+  if (background_band_px <= 0) {
+    violations.push_back(fmt::format("background_band_px = {}, must be > 0", background_band_px));
+  }
+  if (!(sample_margin_px >= 0.0) || !std::isfinite(sample_margin_px)) {
+    violations.push_back(
+        fmt::format("sample_margin_px = {}, must be finite and >= 0", sample_margin_px));
+  }
+  if (!(local_region_radius_px > 0.0) || !std::isfinite(local_region_radius_px)) {
+    violations.push_back(
+        fmt::format("local_region_radius_px = {}, must be finite and > 0", local_region_radius_px));
+  }
+  if (!(local_region_spacing_px > 0.0) || !std::isfinite(local_region_spacing_px)) {
+    violations.push_back(fmt::format("local_region_spacing_px = {}, must be finite and > 0",
+                                     local_region_spacing_px));
+  }
+  if (!(local_anchor_fraction > 0.0 && local_anchor_fraction <= 1.0)) {
+    violations.push_back(
+        fmt::format("local_anchor_fraction = {}, must be in (0, 1]", local_anchor_fraction));
+  }
+  return internal::JoinViolations("color_model", violations);
+}
+
+// ---------------------------------------------------------------------------------------------
+// ColorHistograms
+
+ColorHistograms::ColorHistograms(int bins_per_channel)
+    : bins_per_channel_(bins_per_channel), bin_width_(256 / bins_per_channel) {
+  BCOT_CHECK(bins_per_channel >= 1 && bins_per_channel <= 256 && 256 % bins_per_channel == 0);
+  const size_t size = static_cast<size_t>(bins_per_channel) * bins_per_channel * bins_per_channel;
+  foreground_.assign(size, 0.0f);
+  background_.assign(size, 0.0f);
+}
+
+int ColorHistograms::Bin(const cv::Vec3b& color) const {
+  return (color[0] / bin_width_ * bins_per_channel_ + color[1] / bin_width_) * bins_per_channel_ +
+         color[2] / bin_width_;
+}
+
+namespace {
+
+// Sets (first time) or blends the normalised histogram of `bins` into `histogram`.
+void BlendHistogram(const std::vector<int>& bins, double learning_rate, bool* initialized,
+                    std::vector<float>* histogram) {
+  if (bins.empty()) return;
+  const float rate = *initialized ? static_cast<float>(learning_rate) : 1.0f;
+  const float keep = 1.0f - rate;
+  const float weight = rate / static_cast<float>(bins.size());
+  for (float& value : *histogram) value *= keep;
+  for (int bin : bins) (*histogram)[bin] += weight;
+  *initialized = true;
+}
+
+}  // namespace
+
+bool ColorHistograms::Update(const std::vector<int>& foreground_bins,
+                             const std::vector<int>& background_bins,
+                             double learning_rate_foreground, double learning_rate_background) {
+  if (foreground_bins.empty() && background_bins.empty()) return false;
+  BlendHistogram(foreground_bins, learning_rate_foreground, &foreground_initialized_, &foreground_);
+  BlendHistogram(background_bins, learning_rate_background, &background_initialized_, &background_);
+  return true;
+}
+
+double ColorHistograms::ForegroundPosterior(int bin) const {
+  const double f = foreground_[bin];
+  const double b = background_[bin];
+  const double sum = f + b;
+  return sum > 0.0 ? f / sum : 0.5;
+}
+
+// ---------------------------------------------------------------------------------------------
+// GlobalColorModel
+
+GlobalColorModel::GlobalColorModel(const ColorModelOptions& options)
+    : options_(options), histograms_(options.bins_per_channel) {
+  BCOT_CHECK(options.Validate().ok());
+}
+
+void GlobalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouette) {
+  BCOT_CHECK(image.size() == silhouette.mask.size());
+  if (cv::countNonZero(silhouette.mask) == 0) return;
+  const int band = options_.background_band_px;
+  const cv::Rect image_rect(0, 0, image.cols, image.rows);
+  cv::Rect box = cv::boundingRect(silhouette.mask);
+  box = cv::Rect(box.x - band - 1, box.y - band - 1, box.width + 2 * band + 2,
+                 box.height + 2 * band + 2) &
+        image_rect;
+  const cv::Mat1b mask = silhouette.mask(box);
+  // Distance of every outside pixel to the nearest silhouette pixel and of every inside pixel
+  // to the nearest outside one.
+  const cv::Mat1b outside = mask == 0;
+  cv::Mat1f distance_outside;
+  cv::Mat1f distance_inside;
+  cv::distanceTransform(outside, distance_outside, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::distanceTransform(mask, distance_inside, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  const float margin = static_cast<float>(options_.sample_margin_px);
+  std::vector<int> foreground_bins;
+  std::vector<int> background_bins;
+  for (int r = 0; r < box.height; ++r) {
+    const cv::Vec3b* colors = image.ptr<cv::Vec3b>(box.y + r) + box.x;
+    for (int c = 0; c < box.width; ++c) {
+      if (mask(r, c) != 0) {
+        if (distance_inside(r, c) > margin) foreground_bins.push_back(histograms_.Bin(colors[c]));
+      } else if (distance_outside(r, c) > margin &&
+                 distance_outside(r, c) <= static_cast<float>(band)) {
+        background_bins.push_back(histograms_.Bin(colors[c]));
+      }
+    }
+  }
+  histograms_.Update(foreground_bins, background_bins, options_.learning_rate_foreground,
+                     options_.learning_rate_background);
+}
+
+std::vector<double> GlobalColorModel::ForegroundPosteriors(
+    const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const {
+  std::vector<double> posteriors;
+  posteriors.reserve(pixels.size());
+  for (const Eigen::Vector2i& pixel : pixels) {
+    BCOT_CHECK(pixel.x() >= 0 && pixel.y() >= 0 && pixel.x() < image.cols &&
+               pixel.y() < image.rows);
+    posteriors.push_back(
+        histograms_.ForegroundPosterior(histograms_.Bin(image(pixel.y(), pixel.x()))));
+  }
+  return posteriors;
+}
+
+// ---------------------------------------------------------------------------------------------
+// LocalColorModel
+
+LocalColorModel::LocalColorModel(const ColorModelOptions& options, double object_diameter_mm)
+    : options_(options),
+      anchor_radius_mm_(options.local_anchor_fraction * object_diameter_mm),
+      fallback_(options) {
+  BCOT_CHECK(object_diameter_mm > 0.0 && std::isfinite(object_diameter_mm));
+}
+
+void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouette) {
+  BCOT_CHECK(image.size() == silhouette.mask.size());
+  fallback_.Update(image, silhouette);
+  active_.clear();
+  std::vector<bool> is_active(regions_.size(), false);
+  const double radius = options_.local_region_radius_px;
+  const int reach = static_cast<int>(std::ceil(radius));
+  const ColorHistograms binner(options_.bins_per_channel);
+  // Distance of every pixel to the other side of the silhouette boundary: pixels within the
+  // sample margin are mixed (anti-aliased, blurred) and not sampled, as in the global model.
+  const cv::Mat1b outside = silhouette.mask == 0;
+  cv::Mat1f distance_outside;
+  cv::Mat1f distance_inside;
+  cv::distanceTransform(outside, distance_outside, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::distanceTransform(silhouette.mask, distance_inside, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  const float margin = static_cast<float>(options_.sample_margin_px);
+  double arc_since_centre = 0.0;
+  for (size_t i = 0; i < silhouette.contour.size(); ++i) {
+    const ContourPoint& point = silhouette.contour[i];
+    const bool new_contour = i == 0 || silhouette.contour[i - 1].contour_id != point.contour_id;
+    if (!new_contour) {
+      arc_since_centre += (point.pixel - silhouette.contour[i - 1].pixel).norm();
+      if (arc_since_centre < options_.local_region_spacing_px) continue;
+    }
+    arc_since_centre = 0.0;
+    // The region with the nearest anchor within the radius, else a new one.
+    int region = -1;
+    double best_squared = anchor_radius_mm_ * anchor_radius_mm_;
+    for (size_t r = 0; r < regions_.size(); ++r) {
+      const double d2 = (regions_[r].anchor_in_template - point.point_in_object).squaredNorm();
+      if (d2 <= best_squared) {
+        best_squared = d2;
+        region = static_cast<int>(r);
+      }
+    }
+    if (region >= 0 && is_active[region]) continue;
+    std::vector<int> foreground_bins;
+    std::vector<int> background_bins;
+    const int cx = static_cast<int>(std::lround(point.pixel.x()));
+    const int cy = static_cast<int>(std::lround(point.pixel.y()));
+    for (int y = std::max(0, cy - reach); y <= std::min(image.rows - 1, cy + reach); ++y) {
+      for (int x = std::max(0, cx - reach); x <= std::min(image.cols - 1, cx + reach); ++x) {
+        if ((Eigen::Vector2d(x, y) - point.pixel).squaredNorm() > radius * radius) continue;
+        const bool inside = silhouette.mask(y, x) != 0;
+        if ((inside ? distance_inside(y, x) : distance_outside(y, x)) <= margin) continue;
+        (inside ? foreground_bins : background_bins).push_back(binner.Bin(image(y, x)));
+      }
+    }
+    if (region < 0) {
+      region = static_cast<int>(regions_.size());
+      regions_.push_back({point.point_in_object, ColorHistograms(options_.bins_per_channel)});
+      is_active.push_back(false);
+    }
+    regions_[region].histograms.Update(foreground_bins, background_bins,
+                                       options_.learning_rate_foreground,
+                                       options_.learning_rate_background);
+    is_active[region] = true;
+    active_.push_back({point.pixel, region});
+  }
+}
+
+std::vector<double> LocalColorModel::ForegroundPosteriors(
+    const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const {
+  std::vector<double> posteriors = fallback_.ForegroundPosteriors(image, pixels);
+  const double radius_squared = options_.local_region_radius_px * options_.local_region_radius_px;
+  std::vector<const ColorHistograms*> histograms;
+  histograms.reserve(active_.size());
+  for (const ActiveRegion& region : active_) {
+    const ColorHistograms& h = regions_[region.region].histograms;
+    histograms.push_back(h.initialized() ? &h : nullptr);
+  }
+  for (size_t p = 0; p < pixels.size(); ++p) {
+    const Eigen::Vector2d pixel = pixels[p].cast<double>();
+    const cv::Vec3b color = image(pixels[p].y(), pixels[p].x());
+    double sum = 0.0;
+    int count = 0;
+    for (size_t r = 0; r < active_.size(); ++r) {
+      if (histograms[r] == nullptr) continue;
+      if ((pixel - active_[r].centre).squaredNorm() > radius_squared) continue;
+      sum += histograms[r]->ForegroundPosterior(histograms[r]->Bin(color));
+      ++count;
+    }
+    if (count > 0) posteriors[p] = sum / count;
+  }
+  return posteriors;
+}
+
+std::unique_ptr<ColorModel> MakeColorModel(const ColorModelOptions& options,
+                                           double object_diameter_mm) {
+  BCOT_CHECK(options.Validate().ok());
+  if (options.kind == ColorModelKind::kLocal) {
+    return std::make_unique<LocalColorModel>(options, object_diameter_mm);
+  }
+  return std::make_unique<GlobalColorModel>(options);
+}
+
+}  // namespace bcot

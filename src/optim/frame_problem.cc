@@ -1,0 +1,211 @@
+#include "bcot/optim/frame_problem.h"
+
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "bcot/core/se3.h"
+#include "bcot/optim/se3_manifold.h"
+#include "bcot/optim/silhouette.h"
+#include "violations.h"
+
+namespace bcot {
+
+Status FrameProblemOptions::Validate() const {
+  std::vector<std::string> violations;
+  if (rounds < 1) violations.push_back(fmt::format("rounds = {}, must be >= 1", rounds));
+  if (iterations < 1) {
+    violations.push_back(fmt::format("iterations = {}, must be >= 1", iterations));
+  }
+  if (pyramid_levels < 1 || pyramid_levels > 6) {
+    violations.push_back(fmt::format("pyramid_levels = {}, must be in [1, 6]", pyramid_levels));
+  }
+  if (!(round_tolerance_deg >= 0.0) || !std::isfinite(round_tolerance_deg)) {
+    violations.push_back(
+        fmt::format("round_tolerance_deg = {}, must be finite and >= 0", round_tolerance_deg));
+  }
+  if (!(round_tolerance_mm >= 0.0) || !std::isfinite(round_tolerance_mm)) {
+    violations.push_back(
+        fmt::format("round_tolerance_mm = {}, must be finite and >= 0", round_tolerance_mm));
+  }
+  if (num_threads < 1) {
+    violations.push_back(fmt::format("num_threads = {}, must be >= 1", num_threads));
+  }
+  const Status region_status = region.Validate();
+  if (!region_status.ok()) violations.push_back(region_status.message());
+  const Status cost_status = cost.Validate();
+  if (!cost_status.ok()) violations.push_back(cost_status.message());
+  return internal::JoinViolations("frame_problem", violations);
+}
+
+const char* FrameTerminationName(FrameTermination termination) {
+  switch (termination) {
+    case FrameTermination::kConverged:
+      return "converged";
+    case FrameTermination::kMaxRounds:
+      return "max_rounds";
+    case FrameTermination::kNotVisible:
+      return "not_visible";
+    case FrameTermination::kSolverFailure:
+      return "solver_failure";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// The template and cost options of pyramid level `level` (scale 2^level, see the header).
+struct LevelOptions {
+  RegionTemplateOptions region;
+  RegionCostOptions cost;
+};
+
+LevelOptions OptionsAtLevel(const FrameProblemOptions& options, int level) {
+  const int scale = 1 << level;
+  LevelOptions result;
+  result.region = options.region;
+  result.region.band_px *= scale;
+  result.region.stride_px *= scale;
+  result.region.contour.sample_spacing_px *= scale;
+  result.cost = options.cost;
+  result.cost.heaviside_slope /= scale;
+  return result;
+}
+
+// One view's linearisation at one level: the template and its energy evaluator.
+struct ViewTemplate {
+  int view = 0;
+  std::shared_ptr<const RegionTemplate> region_template;
+  std::unique_ptr<RegionCostFunction> energy;  // w·Σ F over every pixel
+};
+
+double TotalEnergy(const std::vector<ViewTemplate>& templates, const double* parameters) {
+  double total = 0.0;
+  for (const ViewTemplate& t : templates) total += t.energy->Energy(parameters);
+  return total;
+}
+
+}  // namespace
+
+FrameProblem::FrameProblem(const RayCaster& caster, const FrameProblemOptions& options)
+    : caster_(caster), options_(options) {
+  const Status status = options_.Validate();
+  BCOT_CHECK(status.ok());
+}
+
+FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
+                                 Eigen::Isometry3d* rig_from_objcentre) const {
+  BCOT_CHECK(rig_from_objcentre != nullptr);
+  for (const FrameView& view : views) {
+    BCOT_CHECK(view.camera != nullptr && view.image != nullptr && view.color_model != nullptr);
+    BCOT_CHECK(view.image->cols == view.camera->width && view.image->rows == view.camera->height);
+    BCOT_CHECK(view.weight >= 0.0 && std::isfinite(view.weight));
+  }
+  FrameSummary summary;
+  summary.views.resize(views.size());
+  const Eigen::Isometry3d start = *rig_from_objcentre;
+  PoseParameters x = ToPoseParameters(start);
+  const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
+
+  auto fail = [&](FrameTermination termination, std::string message) {
+    summary.termination = termination;
+    summary.message = std::move(message);
+    *rig_from_objcentre = start;
+    return summary;
+  };
+
+  // Coarse levels L−1..1 once, then the rounds at level 0 (see the header).
+  struct Step {
+    int level;
+    int round;  // −1 on coarse levels
+  };
+  std::vector<Step> steps;
+  for (int level = options_.pyramid_levels - 1; level >= 1; --level) steps.push_back({level, -1});
+  for (int round = 0; round < options_.rounds; ++round) steps.push_back({0, round});
+
+  summary.termination = FrameTermination::kMaxRounds;
+  for (const Step& step : steps) {
+    const std::string where = step.round < 0 ? fmt::format("level {}", step.level)
+                                             : fmt::format("round {}", step.round + 1);
+    const LevelOptions level_options = OptionsAtLevel(options_, step.level);
+    const Eigen::Isometry3d linearisation_pose = FromPoseParameters(x.data());
+    std::vector<ViewTemplate> templates;
+    ceres::Problem problem;
+    for (size_t v = 0; v < views.size(); ++v) {
+      const FrameView& view = views[v];
+      if (view.weight == 0.0) continue;
+      const Silhouette silhouette =
+          RenderSilhouette(caster_, *view.camera,
+                           view.cam_from_rig * linearisation_pose * objcentre_from_template,
+                           level_options.region.contour);
+      StatusOr<RegionTemplate> region_template = BuildRegionTemplate(
+          caster_, *view.camera, view.cam_from_rig, linearisation_pose, *view.image,
+          *view.color_model, silhouette, level_options.region);
+      // Options were validated and the view checked above: a failure here is a bug.
+      BCOT_CHECK(region_template.ok());
+      if (region_template->pixels.empty()) continue;
+      ViewTemplate t;
+      t.view = static_cast<int>(v);
+      t.region_template =
+          std::make_shared<const RegionTemplate>(std::move(region_template).value());
+      RegionCostOptions cost_options = level_options.cost;
+      cost_options.view_weight = view.weight;
+      const int pixel_count = static_cast<int>(t.region_template->pixels.size());
+      t.energy = std::make_unique<RegionCostFunction>(*view.camera, view.cam_from_rig,
+                                                      t.region_template, 0, pixel_count,
+                                                      cost_options);
+      AddRegionResidualBlocks(*view.camera, view.cam_from_rig, t.region_template, cost_options,
+                              x.data(), &problem);
+      if (step.level == 0) summary.views[v].pixels = pixel_count;
+      templates.push_back(std::move(t));
+    }
+    if (templates.empty()) {
+      return fail(FrameTermination::kNotVisible,
+                  where + ": the object is outside every view");
+    }
+    if (step.round == 0) summary.initial_energy = TotalEnergy(templates, x.data());
+    problem.SetManifold(x.data(), new Se3Manifold());
+
+    ceres::Solver::Options solver_options;
+    solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+    solver_options.max_num_iterations = options_.iterations;
+    solver_options.num_threads = options_.num_threads;
+    solver_options.logging_type = ceres::SILENT;
+    ceres::Solver::Summary ceres_summary;
+    ceres::Solve(solver_options, &problem, &ceres_summary);
+    summary.iterations += static_cast<int>(ceres_summary.iterations.size()) - 1;
+    if (!ceres_summary.IsSolutionUsable()) {
+      return fail(FrameTermination::kSolverFailure, where + ": " + ceres_summary.message);
+    }
+    if (step.round < 0) continue;
+
+    summary.final_energy = 0.0;
+    for (const ViewTemplate& t : templates) {
+      const double energy = t.energy->Energy(x.data());
+      summary.views[t.view].energy = energy;
+      summary.final_energy += energy;
+    }
+    if (!std::isfinite(summary.final_energy)) {
+      return fail(FrameTermination::kSolverFailure, where + ": the energy is not finite");
+    }
+    summary.rounds = step.round + 1;
+    const Eigen::Isometry3d round_end = FromPoseParameters(x.data());
+    summary.last_round_rotation_deg =
+        RotationDistanceDeg(linearisation_pose.linear(), round_end.linear());
+    summary.last_round_translation_mm =
+        (round_end.translation() - linearisation_pose.translation()).norm();
+    if (summary.last_round_rotation_deg < options_.round_tolerance_deg &&
+        summary.last_round_translation_mm < options_.round_tolerance_mm) {
+      summary.termination = FrameTermination::kConverged;
+      break;
+    }
+  }
+  *rig_from_objcentre = FromPoseParameters(x.data());
+  return summary;
+}
+
+}  // namespace bcot

@@ -1,0 +1,178 @@
+#include "bcot/optim/region_cost.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "bcot/core/se3.h"
+#include "bcot/optim/se3_manifold.h"
+#include "violations.h"
+
+namespace bcot {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Model points closer to the camera plane than this (mm) make the evaluation fail.
+constexpr double kMinDepthMm = 1e-6;
+
+}  // namespace
+
+Status RegionCostOptions::Validate() const {
+  std::vector<std::string> violations;
+  if (form != RegionResidualForm::kSqrtEnergy && form != RegionResidualForm::kIrls) {
+    violations.push_back(
+        fmt::format("form = {}, must be sqrt_energy or irls", static_cast<int>(form)));
+  }
+  if (!(heaviside_slope > 0.0) || !std::isfinite(heaviside_slope)) {
+    violations.push_back(
+        fmt::format("heaviside_slope = {}, must be finite and > 0", heaviside_slope));
+  }
+  if (!(view_weight >= 0.0) || !std::isfinite(view_weight)) {
+    violations.push_back(fmt::format("view_weight = {}, must be finite and >= 0", view_weight));
+  }
+  if (!(probability_floor > 0.0 && probability_floor < 0.5)) {
+    violations.push_back(
+        fmt::format("probability_floor = {}, must be in (0, 0.5)", probability_floor));
+  }
+  return internal::JoinViolations("region_cost", violations);
+}
+
+void SqrtLoss::Evaluate(double s, double rho[3]) const {
+  if (!(s > 0.0)) {
+    rho[0] = 0.0;
+    rho[1] = 0.0;
+    rho[2] = 0.0;
+    return;
+  }
+  const double root = std::sqrt(s);
+  rho[0] = 2.0 * weight_ * root;
+  rho[1] = weight_ / root;
+  rho[2] = -0.5 * weight_ / (s * root);
+}
+
+RegionCostFunction::RegionCostFunction(const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
+                                       RegionTemplate region_template,
+                                       const RegionCostOptions& options)
+    : camera_(camera),
+      cam_from_rig_(cam_from_rig),
+      template_(std::make_shared<const RegionTemplate>(std::move(region_template))),
+      options_(options) {
+  Initialize(static_cast<int>(template_->pixels.size()));
+}
+
+RegionCostFunction::RegionCostFunction(const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
+                                       std::shared_ptr<const RegionTemplate> region_template,
+                                       int first, int count, const RegionCostOptions& options)
+    : camera_(camera),
+      cam_from_rig_(cam_from_rig),
+      template_(std::move(region_template)),
+      first_(first),
+      options_(options) {
+  Initialize(count);
+}
+
+void RegionCostFunction::Initialize(int count) {
+  BCOT_CHECK(template_ != nullptr);
+  BCOT_CHECK(count >= 1 && first_ >= 0 &&
+             first_ + count <= static_cast<int>(template_->pixels.size()));
+  BCOT_CHECK(options_.Validate().ok());
+  set_num_residuals(count);
+  mutable_parameter_block_sizes()->push_back(kPoseAmbientSize);
+}
+
+std::unique_ptr<ceres::LossFunction> RegionCostFunction::MakeLossFunction() const {
+  if (options_.form == RegionResidualForm::kIrls) {
+    return std::make_unique<SqrtLoss>(options_.view_weight);
+  }
+  return nullptr;
+}
+
+bool RegionCostFunction::Evaluate(double const* const* parameters, double* residuals,
+                                  double** jacobians) const {
+  const Eigen::Isometry3d cam_from_objcentre = cam_from_rig_ * FromPoseParameters(parameters[0]);
+  const Eigen::Matrix3d rotation = cam_from_objcentre.linear();
+  const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
+  const int n = num_residuals();
+  Eigen::Matrix<double, Eigen::Dynamic, 6> lie_jacobian;
+  if (want_jacobian) lie_jacobian.resize(n, 6);
+
+  const double s = options_.heaviside_slope;
+  const double eps = options_.probability_floor;
+  const double w = options_.view_weight;
+  const bool sqrt_form = options_.form == RegionResidualForm::kSqrtEnergy;
+  Eigen::Matrix<double, 2, 3> d_pixel_d_point;
+  for (int i = 0; i < n; ++i) {
+    const RegionPixel& p = template_->pixels[first_ + i];
+    const Eigen::Vector3d point_in_cam = cam_from_objcentre * p.point_in_objcentre;
+    if (!(point_in_cam.z() > kMinDepthMm)) return false;
+    const Eigen::Vector2d projection =
+        camera_.Project(point_in_cam, want_jacobian ? &d_pixel_d_point : nullptr);
+    const double phi = p.phi0 - p.grad_phi0.dot(projection - p.projection0);
+    const double heaviside = 0.5 - std::atan(s * phi) / kPi;
+    const double mix =
+        eps + (1.0 - 2.0 * eps) * (heaviside * p.p_foreground + (1.0 - heaviside) * p.p_background);
+    const double energy = -std::log(mix);
+    double d_residual_d_energy = 1.0;
+    if (sqrt_form) {
+      residuals[i] = std::sqrt(2.0 * w * energy);
+      d_residual_d_energy = residuals[i] > 0.0 ? w / residuals[i] : 0.0;  // 0 only when w = 0
+    } else {
+      residuals[i] = energy;
+    }
+    if (want_jacobian) {
+      const double d_heaviside = -s / (kPi * (1.0 + s * s * phi * phi));
+      const double d_energy_d_phi =
+          -(1.0 - 2.0 * eps) * (p.p_foreground - p.p_background) * d_heaviside / mix;
+      // ∂Φ/∂δ = −nᵀ·∂π/∂X_c·R_c·[I | −X^]  (S.19).
+      const Eigen::RowVector3d d_phi_d_point_in_cam = -p.grad_phi0.transpose() * d_pixel_d_point;
+      const Eigen::RowVector3d d_phi_d_rho = d_phi_d_point_in_cam * rotation;
+      const Eigen::RowVector3d d_phi_d_omega = -d_phi_d_rho * Hat(p.point_in_objcentre);
+      const double scale = d_residual_d_energy * d_energy_d_phi;
+      lie_jacobian.block<1, 3>(i, 0) = scale * d_phi_d_rho;
+      lie_jacobian.block<1, 3>(i, 3) = scale * d_phi_d_omega;
+    }
+  }
+  if (want_jacobian) AmbientFromLieJacobian(lie_jacobian, parameters[0], jacobians[0]);
+  return true;
+}
+
+double RegionCostFunction::Energy(const double* rig_from_objcentre) const {
+  std::vector<double> residuals(num_residuals());
+  const double* parameters[] = {rig_from_objcentre};
+  if (!Evaluate(parameters, residuals.data(), nullptr)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  double energy = 0.0;
+  for (double r : residuals) {
+    energy +=
+        options_.form == RegionResidualForm::kSqrtEnergy ? 0.5 * r * r : options_.view_weight * r;
+  }
+  return energy;
+}
+
+std::vector<ceres::ResidualBlockId> AddRegionResidualBlocks(
+    const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
+    std::shared_ptr<const RegionTemplate> region_template, const RegionCostOptions& options,
+    double* rig_from_objcentre, ceres::Problem* problem) {
+  std::vector<ceres::ResidualBlockId> blocks;
+  const int size = static_cast<int>(region_template->pixels.size());
+  if (size == 0) return blocks;
+  if (options.form == RegionResidualForm::kSqrtEnergy) {
+    blocks.push_back(problem->AddResidualBlock(
+        new RegionCostFunction(camera, cam_from_rig, std::move(region_template), 0, size, options),
+        nullptr, rig_from_objcentre));
+    return blocks;
+  }
+  blocks.reserve(size);
+  for (int i = 0; i < size; ++i) {
+    blocks.push_back(problem->AddResidualBlock(
+        new RegionCostFunction(camera, cam_from_rig, region_template, i, 1, options),
+        new SqrtLoss(options.view_weight), rig_from_objcentre));
+  }
+  return blocks;
+}
+
+}  // namespace bcot

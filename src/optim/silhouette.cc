@@ -1,0 +1,23 @@
+#include "bcot/optim/silhouette.h"
+
+namespace bcot {
+
+Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
+                            const Eigen::Isometry3d& cam_from_template,
+                            const ContourOptions& contour_options) {
+  Silhouette silhouette;
+  silhouette.mask = cv::Mat1b::zeros(camera.height, camera.width);
+  RenderOptions render_options;
+  render_options.margin_px = 2;
+  silhouette.view = caster.Render(camera, cam_from_template, render_options);
+  const cv::Rect image_rect(0, 0, camera.width, camera.height);
+  const cv::Rect inside = silhouette.view.roi & image_rect;
+  if (!inside.empty() && !silhouette.view.mask.empty()) {
+    const cv::Rect in_view(inside.tl() - silhouette.view.roi.tl(), inside.size());
+    silhouette.view.mask(in_view).copyTo(silhouette.mask(inside));
+  }
+  silhouette.contour = caster.ExtractContour(camera, cam_from_template, contour_options);
+  return silhouette;
+}
+
+}  // namespace bcot

@@ -1,0 +1,297 @@
+#include "bcot/pipeline/annotate_options.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bcot/core/yaml_util.h"
+
+namespace bcot {
+
+Status AnnotateOptions::Validate() const {
+  std::vector<std::string> violations;
+  const Status tracker_status = tracker.Validate();
+  if (!tracker_status.ok()) violations.push_back(tracker_status.message());
+  if (!views.weights.empty() && !views.cameras.empty() &&
+      views.weights.size() != views.cameras.size()) {
+    violations.push_back(fmt::format("views: weights has {} entries for {} cameras",
+                                     views.weights.size(), views.cameras.size()));
+  }
+  for (size_t i = 0; i < views.weights.size(); ++i) {
+    if (!(views.weights[i] >= 0.0) || !std::isfinite(views.weights[i])) {
+      violations.push_back(
+          fmt::format("views: weights[{}] = {}, must be finite and >= 0", i, views.weights[i]));
+    }
+  }
+  for (size_t i = 0; i < views.cameras.size(); ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      if (views.cameras[i] == views.cameras[j]) {
+        violations.push_back(fmt::format("views: camera '{}' is listed twice", views.cameras[i]));
+      }
+    }
+  }
+  if (violations.empty()) return Status::Ok();
+  std::string message = violations[0];
+  for (size_t i = 1; i < violations.size(); ++i) message += "; " + violations[i];
+  return Status::InvalidConfig(message);
+}
+
+namespace {
+
+const char* FormName(RegionResidualForm form) {
+  return form == RegionResidualForm::kIrls ? "irls" : "sqrt_energy";
+}
+const char* KindName(ColorModelKind kind) {
+  return kind == ColorModelKind::kLocal ? "local" : "global";
+}
+
+// Re-reports the violations of a section's Validate() ("context: field = value, rule; ...") at
+// the line of the key each one is about, as "file:line: section.key = value, rule".
+Status LocateViolations(const Status& status, const YamlMap& map) {
+  if (status.ok()) return status;
+  std::vector<std::string> located;
+  std::string rest = status.message();
+  while (!rest.empty()) {
+    const size_t end = rest.find("; ");
+    std::string piece = rest.substr(0, end);
+    rest = end == std::string::npos ? "" : rest.substr(end + 2);
+    // Drop "context: " prefixes up to the "field = ..." part.
+    const size_t equals = piece.find(" = ");
+    if (equals != std::string::npos) {
+      const size_t colon = piece.rfind(": ", equals);
+      if (colon != std::string::npos) piece = piece.substr(colon + 2);
+    }
+    const std::string field = piece.substr(0, piece.find(" = "));
+    std::string key = field;
+    for (const auto& entry : map.node()) {
+      const std::string candidate = entry.first.as<std::string>();
+      if (candidate == field || (candidate.size() > field.size() &&
+                                 candidate.compare(candidate.size() - field.size() - 1,
+                                                   std::string::npos, "_" + field) == 0)) {
+        key = candidate;
+        break;
+      }
+    }
+    const std::string value_and_rule = piece.substr(field.size());
+    located.push_back(fmt::format("{}: {}.{}{}", map.Location(key), map.path(), key,
+                                  value_and_rule));
+  }
+  std::string message = located[0];
+  for (size_t i = 1; i < located.size(); ++i) message += "; " + located[i];
+  return Status::InvalidConfig(message);
+}
+
+// Runs `parse` on root[section] when present, rejects unknown keys, then re-reports the
+// section's validation errors at their lines.
+Status ParseSection(YamlMap& root, const std::string& section,
+                    const std::function<Status(YamlMap&)>& parse,
+                    const std::function<Status()>& validate) {
+  if (!root.Has(section)) return Status::Ok();
+  YamlMap map(root.Node(section), root.source_name(), section, StatusCode::kInvalidConfig);
+  BCOT_RETURN_IF_ERROR(map.Check());
+  BCOT_RETURN_IF_ERROR(parse(map));
+  BCOT_RETURN_IF_ERROR(map.CheckNoUnknownKeys());
+  return LocateViolations(validate(), map);
+}
+
+Status GetEnum(YamlMap& map, const std::string& key, const std::vector<std::string>& names,
+               int* index) {
+  if (!map.Has(key)) return Status::Ok();
+  std::string value;
+  BCOT_RETURN_IF_ERROR(map.Get(key, &value));
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (value == names[i]) {
+      *index = static_cast<int>(i);
+      return Status::Ok();
+    }
+  }
+  std::string choices = names[0];
+  for (size_t i = 1; i < names.size(); ++i) choices += " | " + names[i];
+  return map.Error(key, fmt::format("'{}' is not one of {}", value, choices));
+}
+
+Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
+                 AnnotateOptions* o) {
+  if (!root_node.IsDefined() || root_node.IsNull()) return Status::Ok();
+  YamlMap root(root_node, source_name, "", StatusCode::kInvalidConfig);
+  BCOT_RETURN_IF_ERROR(root.Check());
+  FrameProblemOptions& frame = o->tracker.frame;
+
+  BCOT_RETURN_IF_ERROR(ParseSection(
+      root, "frame",
+      [&](YamlMap& m) -> Status {
+        BCOT_RETURN_IF_ERROR(m.GetOptional("rounds", &frame.rounds));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("iterations", &frame.iterations));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("pyramid_levels", &frame.pyramid_levels));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("round_tolerance_deg", &frame.round_tolerance_deg));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("round_tolerance_mm", &frame.round_tolerance_mm));
+        return m.GetOptional("num_threads", &frame.num_threads);
+      },
+      [&] {
+        FrameProblemOptions own = frame;  // this section's fields only
+        own.region = RegionTemplateOptions();
+        own.cost = RegionCostOptions();
+        return own.Validate();
+      }));
+
+  RegionTemplateOptions& region = frame.region;
+  BCOT_RETURN_IF_ERROR(ParseSection(
+      root, "region",
+      [&](YamlMap& m) -> Status {
+        BCOT_RETURN_IF_ERROR(m.GetOptional("band_px", &region.band_px));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("stride_px", &region.stride_px));
+        BCOT_RETURN_IF_ERROR(
+            m.GetOptional("contour_sample_spacing_px", &region.contour.sample_spacing_px));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("contour_precision_px", &region.contour.precision_px));
+        return m.GetOptional("contour_coarse_step_px", &region.contour.coarse_step_px);
+      },
+      [&] { return region.Validate(); }));
+
+  RegionCostOptions& cost = frame.cost;
+  BCOT_RETURN_IF_ERROR(ParseSection(
+      root, "cost",
+      [&](YamlMap& m) -> Status {
+        int form = static_cast<int>(cost.form);
+        BCOT_RETURN_IF_ERROR(GetEnum(m, "form", {"sqrt_energy", "irls"}, &form));
+        cost.form = static_cast<RegionResidualForm>(form);
+        BCOT_RETURN_IF_ERROR(m.GetOptional("heaviside_slope", &cost.heaviside_slope));
+        return m.GetOptional("probability_floor", &cost.probability_floor);
+      },
+      [&] { return cost.Validate(); }));
+
+  ColorModelOptions& color = o->tracker.color;
+  BCOT_RETURN_IF_ERROR(ParseSection(
+      root, "color",
+      [&](YamlMap& m) -> Status {
+        int kind = static_cast<int>(color.kind);
+        BCOT_RETURN_IF_ERROR(GetEnum(m, "kind", {"global", "local"}, &kind));
+        color.kind = static_cast<ColorModelKind>(kind);
+        BCOT_RETURN_IF_ERROR(m.GetOptional("bins_per_channel", &color.bins_per_channel));
+        BCOT_RETURN_IF_ERROR(
+            m.GetOptional("learning_rate_foreground", &color.learning_rate_foreground));
+        BCOT_RETURN_IF_ERROR(
+            m.GetOptional("learning_rate_background", &color.learning_rate_background));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("background_band_px", &color.background_band_px));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("sample_margin_px", &color.sample_margin_px));
+        BCOT_RETURN_IF_ERROR(
+            m.GetOptional("local_region_radius_px", &color.local_region_radius_px));
+        BCOT_RETURN_IF_ERROR(
+            m.GetOptional("local_region_spacing_px", &color.local_region_spacing_px));
+        return m.GetOptional("local_anchor_fraction", &color.local_anchor_fraction);
+      },
+      [&] { return color.Validate(); }));
+
+  BCOT_RETURN_IF_ERROR(ParseSection(
+      root, "tracker",
+      [&](YamlMap& m) -> Status {
+        return m.GetOptional("bootstrap_passes", &o->tracker.bootstrap_passes);
+      },
+      [&]() -> Status {
+        if (o->tracker.bootstrap_passes >= 1) return Status::Ok();
+        return Status::InvalidConfig(
+            fmt::format("bootstrap_passes = {}, must be >= 1", o->tracker.bootstrap_passes));
+      }));
+
+  BCOT_RETURN_IF_ERROR(ParseSection(
+      root, "views",
+      [&](YamlMap& m) -> Status {
+        BCOT_RETURN_IF_ERROR(m.GetOptional("cameras", &o->views.cameras));
+        return m.GetOptional("weights", &o->views.weights);
+      },
+      [&] {
+        AnnotateOptions own;
+        own.views = o->views;
+        return own.Validate();
+      }));
+  return root.CheckNoUnknownKeys();
+}
+
+std::string Quote(const std::string& text) { return FormatYamlString(text); }
+
+template <typename T, typename Format>
+std::string List(const std::vector<T>& values, Format format) {
+  std::string text = "[";
+  for (size_t i = 0; i < values.size(); ++i) text += (i > 0 ? ", " : "") + format(values[i]);
+  return text + "]";
+}
+
+}  // namespace
+
+StatusOr<AnnotateOptions> ParseAnnotateOptions(const YAML::Node& root,
+                                               const std::string& source_name) {
+  AnnotateOptions options;
+  const Status status = ParseInto(root, source_name, &options);
+  if (!status.ok()) return Status::InvalidConfig(status.message());
+  // Sections were validated one by one; this catches what spans sections.
+  const Status whole = options.Validate();
+  if (!whole.ok()) return Status::InvalidConfig(source_name + ": " + whole.message());
+  return options;
+}
+
+StatusOr<AnnotateOptions> ReadAnnotateOptions(const std::string& path,
+                                              const std::vector<std::string>& overrides) {
+  YAML::Node node(YAML::NodeType::Map);
+  if (!path.empty()) {
+    if (!std::filesystem::exists(path)) {
+      return Status::InvalidConfig(fmt::format("{}: config file not found", path));
+    }
+    StatusOr<YAML::Node> root = LoadYamlFile(path, StatusCode::kInvalidConfig);
+    if (!root.ok()) return Status::InvalidConfig(root.status().message());
+    node = *root;
+  }
+  if (!overrides.empty()) {
+    if (!node.IsDefined() || node.IsNull()) node = YAML::Node(YAML::NodeType::Map);
+    const Status status = ApplyYamlOverrides(overrides, &node);
+    if (!status.ok()) return Status::InvalidConfig(status.message());
+  }
+  return ParseAnnotateOptions(node, path.empty() ? "--set" : path);
+}
+
+std::string FormatAnnotateOptions(const AnnotateOptions& o) {
+  const FrameProblemOptions& f = o.tracker.frame;
+  const ColorModelOptions& c = o.tracker.color;
+  std::string y;
+  auto section = [&y](const std::string& name) { y += name + ":\n"; };
+  auto line = [&y](const std::string& key, const std::string& value) {
+    y += "  " + key + ": " + value + "\n";
+  };
+  auto number = [](double value) { return fmt::format("{}", value); };
+  section("frame");
+  line("rounds", number(f.rounds));
+  line("iterations", number(f.iterations));
+  line("pyramid_levels", number(f.pyramid_levels));
+  line("round_tolerance_deg", number(f.round_tolerance_deg));
+  line("round_tolerance_mm", number(f.round_tolerance_mm));
+  line("num_threads", number(f.num_threads));
+  section("region");
+  line("band_px", number(f.region.band_px));
+  line("stride_px", number(f.region.stride_px));
+  line("contour_sample_spacing_px", number(f.region.contour.sample_spacing_px));
+  line("contour_precision_px", number(f.region.contour.precision_px));
+  line("contour_coarse_step_px", number(f.region.contour.coarse_step_px));
+  section("cost");
+  line("form", FormName(f.cost.form));
+  line("heaviside_slope", number(f.cost.heaviside_slope));
+  line("probability_floor", number(f.cost.probability_floor));
+  section("color");
+  line("kind", KindName(c.kind));
+  line("bins_per_channel", number(c.bins_per_channel));
+  line("learning_rate_foreground", number(c.learning_rate_foreground));
+  line("learning_rate_background", number(c.learning_rate_background));
+  line("background_band_px", number(c.background_band_px));
+  line("sample_margin_px", number(c.sample_margin_px));
+  line("local_region_radius_px", number(c.local_region_radius_px));
+  line("local_region_spacing_px", number(c.local_region_spacing_px));
+  line("local_anchor_fraction", number(c.local_anchor_fraction));
+  section("tracker");
+  line("bootstrap_passes", number(o.tracker.bootstrap_passes));
+  section("views");
+  line("cameras", List(o.views.cameras, Quote));
+  line("weights", List(o.views.weights, number));
+  return y;
+}
+
+}  // namespace bcot

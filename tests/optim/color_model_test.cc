@@ -1,0 +1,182 @@
+#include "bcot/optim/color_model.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
+
+#include "region_test_scene.h"
+
+namespace bcot {
+namespace {
+
+TEST(ColorModelOptionsTest, ValidateListsEveryViolation) {
+  EXPECT_TRUE(ColorModelOptions().Validate().ok());
+  ColorModelOptions options;
+  options.bins_per_channel = 30;
+  options.learning_rate_foreground = 0.0;
+  options.learning_rate_background = 1.5;
+  options.background_band_px = -3;
+  options.local_region_radius_px = -1.0;
+  options.local_region_spacing_px = 0.0;
+  options.local_anchor_fraction = 2.0;
+  const Status status = options.Validate();
+  ASSERT_FALSE(status.ok());
+  EXPECT_EQ(status.code(), StatusCode::kInvalidConfig);
+  for (const char* expected :
+       {"color_model: ", "bins_per_channel = 30, must divide 256",
+        "learning_rate_foreground = 0, must be in (0, 1]",
+        "learning_rate_background = 1.5, must be in (0, 1]", "background_band_px = -3, must be > 0",
+        "local_region_radius_px = -1", "local_region_spacing_px = 0",
+        "local_anchor_fraction = 2, must be in (0, 1]"}) {
+    EXPECT_NE(status.message().find(expected), std::string::npos)
+        << "missing '" << expected << "' in: " << status.message();
+  }
+  for (int bins : {1, 2, 8, 32, 256}) {
+    options = ColorModelOptions();
+    options.bins_per_channel = bins;
+    EXPECT_TRUE(options.Validate().ok()) << bins;
+  }
+}
+
+TEST(ColorHistogramsTest, PosteriorsAndTemporalBlending) {
+  ColorHistograms histograms(4);
+  EXPECT_FALSE(histograms.initialized());
+  EXPECT_EQ(histograms.Bin(cv::Vec3b(0, 0, 0)), 0);
+  EXPECT_EQ(histograms.Bin(cv::Vec3b(255, 255, 255)), 63);
+  EXPECT_EQ(histograms.Bin(cv::Vec3b(64, 0, 130)), 16 + 2);
+  EXPECT_DOUBLE_EQ(histograms.ForegroundPosterior(5), 0.5);  // nothing learned yet
+
+  // First update sets: h_f = {0: 1}, h_b = {0: ½, 1: ½}.
+  ASSERT_TRUE(histograms.Update({0, 0}, {0, 1}, 0.1, 0.2));
+  EXPECT_TRUE(histograms.initialized());
+  EXPECT_FLOAT_EQ(histograms.foreground()[0], 1.0f);
+  EXPECT_FLOAT_EQ(histograms.background()[1], 0.5f);
+  EXPECT_NEAR(histograms.ForegroundPosterior(0), 1.0 / 1.5, 1e-7);
+  EXPECT_DOUBLE_EQ(histograms.ForegroundPosterior(1), 0.0);
+  EXPECT_DOUBLE_EQ(histograms.ForegroundPosterior(7), 0.5);  // unseen colour
+
+  // Second update blends with the learning rates: h ← (1 − α)·h + α·h_new.
+  ASSERT_TRUE(histograms.Update({2}, {3}, 0.1, 0.2));
+  EXPECT_FLOAT_EQ(histograms.foreground()[0], 0.9f);
+  EXPECT_FLOAT_EQ(histograms.foreground()[2], 0.1f);
+  EXPECT_FLOAT_EQ(histograms.background()[0], 0.4f);
+  EXPECT_FLOAT_EQ(histograms.background()[3], 0.2f);
+  EXPECT_NEAR(histograms.ForegroundPosterior(0), 0.9 / 1.3, 1e-6);
+
+  // A side without samples keeps its histogram; no samples at all changes nothing.
+  ASSERT_TRUE(histograms.Update({}, {3}, 0.1, 1.0));
+  EXPECT_FLOAT_EQ(histograms.foreground()[0], 0.9f);
+  EXPECT_FLOAT_EQ(histograms.background()[3], 1.0f);
+  EXPECT_FALSE(histograms.Update({}, {}, 0.1, 0.2));
+}
+
+class ColorModelSceneTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    mesh_ = std::make_unique<Mesh>(test::TestSpoolMesh());
+    caster_ = std::make_unique<RayCaster>(*mesh_);
+    camera_ = test::TestCamera();
+    cam_from_objcentre_ =
+        test::MakeCamFromObjcentre(Eigen::Vector3d(0.3, 0.5, 0.1), {10.0, -5.0, 450.0});
+    image_ = test::RenderTestImage(*caster_, camera_, cam_from_objcentre_);
+    silhouette_ = SilhouetteAt(cam_from_objcentre_);
+  }
+
+  Silhouette SilhouetteAt(const Eigen::Isometry3d& cam_from_objcentre) const {
+    return RenderSilhouette(*caster_, camera_,
+                            cam_from_objcentre * mesh_->objcentre_from_template());
+  }
+
+  // Mean P_f over pixels well inside (> 3 px) and over pixels 4..30 px outside the silhouette.
+  void MeanPosteriors(const ColorModel& model, double* inside, double* outside) const {
+    cv::Mat1f distance_outside, distance_inside;
+    cv::distanceTransform(silhouette_.mask == 0, distance_outside, cv::DIST_L2, 5);
+    cv::distanceTransform(silhouette_.mask != 0, distance_inside, cv::DIST_L2, 5);
+    std::vector<Eigen::Vector2i> inside_pixels, outside_pixels;
+    for (int y = 0; y < image_.rows; y += 2) {
+      for (int x = 0; x < image_.cols; x += 2) {
+        if (distance_inside(y, x) > 3.0f) inside_pixels.emplace_back(x, y);
+        const float d = distance_outside(y, x);
+        if (d > 4.0f && d < 30.0f) outside_pixels.emplace_back(x, y);
+      }
+    }
+    ASSERT_GT(inside_pixels.size(), 1000u);
+    ASSERT_GT(outside_pixels.size(), 1000u);
+    auto mean = [](const std::vector<double>& values) {
+      double sum = 0.0;
+      for (double v : values) sum += v;
+      return sum / static_cast<double>(values.size());
+    };
+    *inside = mean(model.ForegroundPosteriors(image_, inside_pixels));
+    *outside = mean(model.ForegroundPosteriors(image_, outside_pixels));
+  }
+
+  std::unique_ptr<Mesh> mesh_;
+  std::unique_ptr<RayCaster> caster_;
+  Camera camera_;
+  Eigen::Isometry3d cam_from_objcentre_;
+  cv::Mat3b image_;
+  Silhouette silhouette_;
+};
+
+TEST_F(ColorModelSceneTest, GlobalPosteriorsDiscriminateObjectAndBackground) {
+  GlobalColorModel model{ColorModelOptions()};
+  EXPECT_FALSE(model.initialized());
+  model.Update(image_, silhouette_);
+  ASSERT_TRUE(model.initialized());
+  double inside = 0.0, outside = 0.0;
+  MeanPosteriors(model, &inside, &outside);
+  EXPECT_GT(inside, 0.95);
+  EXPECT_LT(outside, 0.05);
+}
+
+TEST_F(ColorModelSceneTest, GlobalModelIgnoresAnEmptySilhouette) {
+  GlobalColorModel model{ColorModelOptions()};
+  Silhouette empty;
+  empty.mask = cv::Mat1b::zeros(image_.size());
+  model.Update(image_, empty);
+  EXPECT_FALSE(model.initialized());
+  const std::vector<double> posteriors = model.ForegroundPosteriors(image_, {{10, 10}});
+  EXPECT_DOUBLE_EQ(posteriors[0], 0.5);
+}
+
+TEST_F(ColorModelSceneTest, LocalPosteriorsDiscriminateAndRegionsPersist) {
+  ColorModelOptions options;
+  options.kind = ColorModelKind::kLocal;
+  const std::unique_ptr<ColorModel> model = MakeColorModel(options, mesh_->diameter());
+  auto* local = dynamic_cast<LocalColorModel*>(model.get());
+  ASSERT_NE(local, nullptr);
+  model->Update(image_, silhouette_);
+  ASSERT_TRUE(model->initialized());
+  const int active = static_cast<int>(local->active_regions().size());
+  EXPECT_GT(active, 10);
+  EXPECT_EQ(local->num_regions(), active);
+  for (const auto& region : local->active_regions()) {
+    EXPECT_TRUE(camera_.InImage(region.centre));
+  }
+  double inside = 0.0, outside = 0.0;
+  MeanPosteriors(*model, &inside, &outside);
+  EXPECT_GT(inside, 0.95);
+  EXPECT_LT(outside, 0.05);
+
+  // The same pose again finds the same regions (anchored to model points); a small motion
+  // mostly reuses them (temporal consistency).
+  model->Update(image_, silhouette_);
+  EXPECT_EQ(local->num_regions(), active);
+  const Eigen::Isometry3d moved =
+      cam_from_objcentre_ * ExpSE3((Vector6d() << 1.0, 0.5, 0.0, 0.0, 0.02, 0.01).finished());
+  model->Update(image_, SilhouetteAt(moved));
+  EXPECT_LT(local->num_regions(), active + active / 4);
+}
+
+TEST(ColorModelFactoryTest, MakesTheRequestedKind) {
+  ColorModelOptions options;
+  EXPECT_NE(dynamic_cast<GlobalColorModel*>(MakeColorModel(options, 100.0).get()), nullptr);
+  options.kind = ColorModelKind::kLocal;
+  EXPECT_NE(dynamic_cast<LocalColorModel*>(MakeColorModel(options, 100.0).get()), nullptr);
+}
+
+}  // namespace
+}  // namespace bcot

@@ -1,0 +1,144 @@
+// A small synthetic scene shared by the colour-model, region-template and region-cost tests:
+// the spool mesh (150 mm, with its template frame O_t deliberately offset from the
+// object-centred frame O_o), a 640×480 camera on a rig, and an image of a uniformly coloured,
+// shaded object in front of a textured, noisy background (anti-aliased by 4×4 supersampling).
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <opencv2/core.hpp>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "bcot/core/camera.h"
+#include "bcot/core/se3.h"
+#include "bcot/render/mesh.h"
+#include "bcot/render/ray_caster.h"
+#include "test_util.h"
+
+namespace bcot::test {
+
+constexpr double kTestPi = 3.14159265358979323846;
+
+inline Mesh TestSpoolMesh() {
+  const StatusOr<Mesh> spool = Mesh::Load(SourcePath("data/meshes/spool.off"), 150.0);
+  BCOT_CHECK(spool.ok());
+  // Shift the file's frame so that objcentre_from_template is not the identity.
+  Eigen::Isometry3d shifted_from_file = Eigen::Isometry3d::Identity();
+  shifted_from_file.translation() = Eigen::Vector3d(12.0, -8.0, 5.0);
+  return spool->Transformed(shifted_from_file);
+}
+
+inline Camera TestCamera() { return Camera("cam0", 640, 480, 550.0, 552.0, 319.5, 239.5); }
+
+// A rig whose frame is not the camera's: cam_from_rig rotates 0.1 rad about y and shifts.
+inline Eigen::Isometry3d TestCamFromRig() {
+  Eigen::Isometry3d cam_from_rig = Eigen::Isometry3d::Identity();
+  cam_from_rig.linear() = ExpSO3(Eigen::Vector3d(0.0, 0.1, 0.02));
+  cam_from_rig.translation() = Eigen::Vector3d(20.0, -5.0, 10.0);
+  return cam_from_rig;
+}
+
+// rig_from_objcentre placing the object at `cam_from_objcentre` in the test camera.
+inline Eigen::Isometry3d RigFromObjcentre(const Eigen::Isometry3d& cam_from_objcentre) {
+  return TestCamFromRig().inverse() * cam_from_objcentre;
+}
+
+inline Eigen::Isometry3d MakeCamFromObjcentre(const Eigen::Vector3d& rotation_vector,
+                                              const Eigen::Vector3d& translation_mm) {
+  Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
+  transform.linear() = ExpSO3(rotation_vector);
+  transform.translation() = translation_mm;
+  return transform;
+}
+
+inline cv::Vec3f BackgroundColor(double x, double y) {
+  // Blue/green texture with stripes and blobs; the object is red.
+  return cv::Vec3f(static_cast<float>(70 + 45 * std::sin(x / 13.0) * std::cos(y / 21.0)),
+                   static_cast<float>(120 + 60 * std::sin(y / 17.0 + x / 29.0)),
+                   static_cast<float>(150 + 50 * std::cos((x + y) / 11.0)));
+}
+
+// RGB image of the object at cam_from_objcentre; seeded noise (σ = noise_sigma grey levels).
+inline cv::Mat3b RenderTestImage(const RayCaster& caster, const Camera& camera,
+                                 const Eigen::Isometry3d& cam_from_objcentre, unsigned seed = 7,
+                                 double noise_sigma = 4.0) {
+  constexpr int kSamples = 4;
+  RenderOptions options;
+  options.roi = cv::Rect(0, 0, camera.width, camera.height);
+  options.samples_per_axis = kSamples;
+  const Eigen::Isometry3d cam_from_template =
+      cam_from_objcentre * caster.mesh().objcentre_from_template();
+  const RenderedView view = caster.Render(camera, cam_from_template, options);
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> noise(0.0f, static_cast<float>(noise_sigma));
+  cv::Mat3b image(camera.height, camera.width);
+  for (int y = 0; y < camera.height; ++y) {
+    for (int x = 0; x < camera.width; ++x) {
+      cv::Vec3f object_sum(0, 0, 0);
+      int hits = 0;
+      for (int j = 0; j < kSamples; ++j) {
+        for (int i = 0; i < kSamples; ++i) {
+          const int r = y * kSamples + j;
+          const int c = x * kSamples + i;
+          if (view.mask(r, c) == 0) continue;
+          const float shade = 0.55f + 0.45f * std::abs(view.normal_in_cam(r, c)[2]);
+          object_sum += cv::Vec3f(200.0f, 45.0f, 35.0f) * shade;
+          ++hits;
+        }
+      }
+      const float coverage = static_cast<float>(hits) / (kSamples * kSamples);
+      cv::Vec3f color = (1.0f - coverage) * BackgroundColor(x, y);
+      if (hits > 0) color += object_sum * (coverage / hits);
+      for (int k = 0; k < 3; ++k) {
+        image(y, x)[k] = cv::saturate_cast<uchar>(color[k] + noise(rng));
+      }
+    }
+  }
+  return image;
+}
+
+// The bunny scaled to a 150 mm diameter: asymmetric, so every rotation is observable.
+inline Mesh TestBunnyMesh() {
+  const StatusOr<Mesh> bunny = Mesh::Load(SourcePath("data/meshes/bunny.obj"), 1.0);
+  BCOT_CHECK(bunny.ok());
+  return bunny->Transformed(Eigen::Isometry3d::Identity(), 150.0 / bunny->diameter());
+}
+
+// A test fixture sharing one bunny mesh and its ray caster across the suite's tests.
+class BunnyCasterTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    mesh_ = new Mesh(TestBunnyMesh());
+    caster_ = new RayCaster(*mesh_);
+  }
+  static void TearDownTestSuite() {
+    delete caster_;
+    delete mesh_;
+  }
+  static inline Mesh* mesh_ = nullptr;
+  static inline RayCaster* caster_ = nullptr;
+};
+
+// Two 640×480 cameras 90° apart looking at an object 450 mm away: the rig frame is camera 0's,
+// camera 1 sits on the +x side of the object and looks along −x (rotation −90° about y).
+struct BinocularScene {
+  Camera camera0 = Camera("left", 640, 480, 550.0, 552.0, 319.5, 239.5);
+  Camera camera1 = Camera("right", 640, 480, 548.0, 549.0, 321.0, 241.0);
+  Eigen::Isometry3d cam0_from_rig = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d cam1_from_rig = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d rig_from_objcentre = Eigen::Isometry3d::Identity();
+
+  BinocularScene() {
+    const Eigen::Vector3d object_in_rig(8.0, -6.0, 450.0);
+    Eigen::Isometry3d rig_from_cam1 = Eigen::Isometry3d::Identity();
+    rig_from_cam1.linear() = ExpSO3(Eigen::Vector3d(0.0, -kTestPi / 2.0, 0.0));
+    rig_from_cam1.translation() = object_in_rig + Eigen::Vector3d(450.0, 0.0, 0.0);
+    cam1_from_rig = rig_from_cam1.inverse();
+    rig_from_objcentre.linear() = ExpSO3(Eigen::Vector3d(0.4, -0.7, 0.25));
+    rig_from_objcentre.translation() = object_in_rig;
+  }
+};
+
+}  // namespace bcot::test

@@ -1,0 +1,96 @@
+#include "bcot/pipeline/annotate_options.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "test_util.h"
+
+namespace bcot {
+namespace {
+
+using ::testing::HasSubstr;
+
+StatusOr<AnnotateOptions> ParseText(const std::string& text) {
+  return ParseAnnotateOptions(YAML::Load(text), "run.yaml");
+}
+
+TEST(AnnotateOptionsTest, DefaultsRoundTripThroughYaml) {
+  AnnotateOptions options;
+  options.tracker.frame.rounds = 3;
+  options.tracker.frame.cost.form = RegionResidualForm::kIrls;
+  options.tracker.color.kind = ColorModelKind::kLocal;
+  options.views.cameras = {"left", "no"};
+  options.views.weights = {1.0, 0.25};
+  const std::string text = FormatAnnotateOptions(options);
+  const StatusOr<AnnotateOptions> read = ParseText(text);
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  EXPECT_EQ(FormatAnnotateOptions(*read), text);
+  EXPECT_EQ(read->tracker.frame.rounds, 3);
+  EXPECT_EQ(read->tracker.frame.cost.form, RegionResidualForm::kIrls);
+  EXPECT_EQ(read->views.cameras[1], "no");  // a string, not the YAML 1.1 boolean
+  EXPECT_EQ(FormatAnnotateOptions(AnnotateOptions()),
+            FormatAnnotateOptions(*ParseText(FormatAnnotateOptions(AnnotateOptions()))));
+}
+
+TEST(AnnotateOptionsTest, EveryShippedConfigLoads) {
+  int loaded = 0;
+  for (const char* name : {"configs/annotate.yaml", "configs/track.yaml"}) {
+    const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(test::SourcePath(name), {});
+    ASSERT_TRUE(options.ok()) << name << ": " << options.status().message();
+    ++loaded;
+  }
+  EXPECT_EQ(loaded, 2);
+  // annotate.yaml spells out the defaults.
+  EXPECT_EQ(FormatAnnotateOptions(*ReadAnnotateOptions(test::SourcePath("configs/annotate.yaml"), {})),
+            FormatAnnotateOptions(AnnotateOptions()));
+  EXPECT_EQ(ReadAnnotateOptions(test::SourcePath("configs/track.yaml"), {})->tracker.frame.rounds, 1);
+}
+
+TEST(AnnotateOptionsTest, UnknownKeyNamesFileLineAndKey) {
+  const StatusOr<AnnotateOptions> options = ParseText("frame:\n  rounds: 2\n  roundz: 3\n");
+  ASSERT_EQ(options.status().code(), StatusCode::kInvalidConfig);
+  EXPECT_THAT(options.status().message(), HasSubstr("run.yaml:3"));
+  EXPECT_THAT(options.status().message(), HasSubstr("roundz"));
+  const StatusOr<AnnotateOptions> section = ParseText("solver:\n  rounds: 2\n");
+  ASSERT_EQ(section.status().code(), StatusCode::kInvalidConfig);
+  EXPECT_THAT(section.status().message(), HasSubstr("solver"));
+}
+
+TEST(AnnotateOptionsTest, OutOfRangeValuesNameTheirLineAndKey) {
+  const StatusOr<AnnotateOptions> options =
+      ParseText("frame:\n  iterations: 4\n  rounds: 0\nregion:\n  band_px: -3\n");
+  ASSERT_EQ(options.status().code(), StatusCode::kInvalidConfig);
+  EXPECT_THAT(options.status().message(), HasSubstr("run.yaml:3: frame.rounds = 0, must be >= 1"));
+  const StatusOr<AnnotateOptions> region = ParseText("region:\n  stride_px: 2\n  band_px: -3\n");
+  EXPECT_THAT(region.status().message(), HasSubstr("run.yaml:3: region.band_px = -3"));
+  const StatusOr<AnnotateOptions> color =
+      ParseText("color:\n  kind: local\n  sample_margin_px: -1\n");
+  EXPECT_THAT(color.status().message(), HasSubstr("run.yaml:3: color.sample_margin_px = -1"));
+}
+
+TEST(AnnotateOptionsTest, WrongTypesAndEnumsAreErrors) {
+  EXPECT_THAT(ParseText("frame:\n  rounds: many\n").status().message(), HasSubstr("rounds"));
+  const StatusOr<AnnotateOptions> form = ParseText("cost:\n  form: squared\n");
+  ASSERT_EQ(form.status().code(), StatusCode::kInvalidConfig);
+  EXPECT_THAT(form.status().message(), HasSubstr("'squared' is not one of sqrt_energy | irls"));
+  EXPECT_THAT(ParseText("views:\n  cameras: [a, b]\n  weights: [1]\n").status().message(),
+              HasSubstr("weights has 1 entries for 2 cameras"));
+}
+
+TEST(AnnotateOptionsTest, OverridesAreValidatedTheSameWay) {
+  const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(
+      test::SourcePath("configs/annotate.yaml"), {"frame.rounds=2", "color.kind=local"});
+  ASSERT_TRUE(options.ok()) << options.status().message();
+  EXPECT_EQ(options->tracker.frame.rounds, 2);
+  EXPECT_EQ(options->tracker.color.kind, ColorModelKind::kLocal);
+  const StatusOr<AnnotateOptions> bad = ReadAnnotateOptions("", {"frame.rounds=-1"});
+  ASSERT_EQ(bad.status().code(), StatusCode::kInvalidConfig);
+  EXPECT_THAT(bad.status().message(), HasSubstr("frame.rounds = -1"));
+  EXPECT_EQ(ReadAnnotateOptions("/nonexistent/run.yaml", {}).status().code(),
+            StatusCode::kInvalidConfig);
+}
+
+}  // namespace
+}  // namespace bcot

@@ -1,0 +1,123 @@
+// `bcot annotate` end to end: a tiny run, exit codes and one-line errors for bad inputs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include "bcot/core/status.h"
+#include "test_util.h"
+
+namespace bcot {
+namespace {
+
+using ::testing::HasSubstr;
+
+int CountLines(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// A 3-frame 160×128 binocular sequence made once by `bcot synth`.
+class AnnotateCommandTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new test::TempDir();
+    std::string output;
+    const int code = test::RunCommand(
+        test::BcotBinary() + " synth --quiet --config " +
+            test::SourcePath("configs/synth/demo.yaml") + " --out " + dir_->File("seq") +
+            " --set cameras.width=160 --set cameras.height=128 --set motion.num_frames=3"
+            " --set distractors.count=1 --set render.object_samples_per_axis=2",
+        &output);
+    BCOT_CHECK(code == 0);
+  }
+  static void TearDownTestSuite() { delete dir_; }
+
+  // A private copy of the sequence the test may break.
+  static std::string CopySequence(const test::TempDir& into) {
+    std::filesystem::copy(dir_->File("seq"), into.File("seq"),
+                          std::filesystem::copy_options::recursive);
+    return into.File("seq");
+  }
+  static std::string Annotate(const std::string& arguments) {
+    return test::BcotBinary() + " annotate --quiet " + arguments;
+  }
+
+  static test::TempDir* dir_;
+};
+
+test::TempDir* AnnotateCommandTest::dir_ = nullptr;
+
+TEST_F(AnnotateCommandTest, HelpExitsZero) {
+  std::string output;
+  EXPECT_EQ(test::RunCommand(test::BcotBinary() + " annotate --help", &output), 0);
+  EXPECT_THAT(output, HasSubstr("--out"));
+  EXPECT_THAT(output, HasSubstr("--set"));
+}
+
+TEST_F(AnnotateCommandTest, TrackingRunWritesTheOutputContract) {
+  test::TempDir out;
+  std::string output;
+  ASSERT_EQ(test::RunCommand(Annotate(dir_->File("seq") + " --out " + out.File("ann") +
+                                      " --config " + test::SourcePath("configs/track.yaml")),
+                             &output),
+            0)
+      << output;
+  for (const char* file : {"rig_from_object.txt", "cam0/pose.txt", "cam1/pose.txt",
+                           "config.resolved.yaml", "frames.csv", "DONE"}) {
+    EXPECT_TRUE(std::filesystem::exists(out.File("ann/") + file)) << file;
+  }
+}
+
+TEST_F(AnnotateCommandTest, BadConfigValueIsAConfigError) {
+  test::TempDir out;
+  std::string output;
+  EXPECT_EQ(test::RunCommand(Annotate(dir_->File("seq") + " --out " + out.File("ann") +
+                                      " --set frame.rounds=0"),
+                             &output),
+            2);
+  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_THAT(output, HasSubstr("frame.rounds = 0"));
+}
+
+TEST_F(AnnotateCommandTest, BadInitPoseIsAOneLineErrorWithItsLine) {
+  test::TempDir work;
+  const std::string seq = CopySequence(work);
+  test::WriteText(seq + "/init_pose.txt", "1 0 0 0 1 0 0 0 1 0 0\n");  // 11 numbers
+  std::string output;
+  EXPECT_EQ(test::RunCommand(Annotate(seq + " --out " + work.File("ann")), &output), 1);
+  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_THAT(output, HasSubstr("init_pose.txt"));
+}
+
+TEST_F(AnnotateCommandTest, MissingCameraFolderIsAOneLineError) {
+  test::TempDir work;
+  const std::string seq = CopySequence(work);
+  std::filesystem::remove_all(seq + "/cam1");
+  std::string output;
+  const int code = test::RunCommand(Annotate(seq + " --out " + work.File("ann")), &output);
+  EXPECT_TRUE(code == 1 || code == 2) << code;
+  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_THAT(output, HasSubstr("cam1"));
+}
+
+TEST_F(AnnotateCommandTest, MeshThatDoesNotLoadIsAOneLineError) {
+  test::TempDir work;
+  const std::string seq = CopySequence(work);
+  test::WriteText(seq + "/model/bunny.obj", "");
+  std::string output;
+  EXPECT_EQ(test::RunCommand(Annotate(seq + " --out " + work.File("ann")), &output), 1);
+  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_THAT(output, HasSubstr("bunny.obj"));
+  EXPECT_FALSE(std::filesystem::exists(work.File("ann/DONE")));
+}
+
+TEST_F(AnnotateCommandTest, MissingSequenceIsAnError) {
+  std::string output;
+  const int code = test::RunCommand(Annotate("/nonexistent/seq --out /tmp/x"), &output);
+  EXPECT_TRUE(code == 1 || code == 2) << code;
+  EXPECT_EQ(CountLines(output), 1) << output;
+}
+
+}  // namespace
+}  // namespace bcot
