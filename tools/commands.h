@@ -8,15 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "bcot/pipeline/monocular_tracker.h"
-
 namespace bcot::tools {
 
 void AddSynthCommand(CLI::App& app, int* exit_code);
 void AddExportCommand(CLI::App& app, int* exit_code);
-// `tracker_factory` builds the tracker `bcot eval --online` runs; empty = none registered, and
-// --online then fails with a clear "not available yet" error (exit 1).
-void AddEvalCommand(CLI::App& app, int* exit_code, MonocularTrackerFactory tracker_factory);
+void AddEvalCommand(CLI::App& app, int* exit_code);
 void AddCalibrateCommand(CLI::App& app, int* exit_code);
 void AddCaptureCommand(CLI::App& app, int* exit_code);
 void AddAnnotateCommand(CLI::App& app, int* exit_code);

@@ -1,14 +1,18 @@
 // bcot eval --data ROOT (--results DIR | --online) [--out DIR] [--config configs/eval.yaml]
-//           [--set key=value]...
-// Scores monocular tracking on a BCOT-layout (or RBOT) benchmark; see evaluator.h.
+//           [--set key=value]... [--tracker-config configs/track.yaml] [--tracker-set k=v]...
+// Scores monocular tracking on a BCOT-layout (or RBOT) benchmark; see evaluator.h. Online, the
+// tracker is bcot's own region tracker (region_monocular_tracker.h) configured like `bcot
+// annotate` (only its solver, colour and tracker sections apply; views are ignored).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
 
 #include "bcot/core/file_util.h"
+#include "bcot/pipeline/annotate_options.h"
 #include "bcot/pipeline/eval_report.h"
 #include "bcot/pipeline/evaluator.h"
+#include "bcot/pipeline/region_monocular_tracker.h"
 #include "commands.h"
 
 namespace bcot::tools {
@@ -16,13 +20,14 @@ namespace {
 
 struct EvalFlags {
   ConfigFlags config;
+  ConfigFlags tracker_config;
   std::string data_root;
   std::string results_root;
   bool online = false;
   std::string out_dir;
 };
 
-int RunEval(const EvalFlags& flags, const MonocularTrackerFactory& factory) {
+int RunEval(const EvalFlags& flags) {
   if (flags.online == !flags.results_root.empty()) {
     PrintError("eval", "give exactly one of --results DIR (offline) and --online");
     return 2;
@@ -32,11 +37,15 @@ int RunEval(const EvalFlags& flags, const MonocularTrackerFactory& factory) {
     PrintError("eval", options.status().message());
     return options.status().ExitCode();
   }
-  if (flags.online && !factory) {
-    PrintError("eval",
-               "--online is not available yet: no monocular tracker is registered in this build; "
-               "score a tracker's pose files with --results DIR instead");
-    return 1;
+  MonocularTrackerFactory factory;
+  if (flags.online) {
+    const StatusOr<AnnotateOptions> tracker_options =
+        ReadAnnotateOptions(flags.tracker_config.config_path, flags.tracker_config.overrides);
+    if (!tracker_options.ok()) {
+      PrintError("eval", tracker_options.status().message());
+      return tracker_options.status().ExitCode();
+    }
+    factory = MakeRegionTrackerFactory(tracker_options->tracker);
   }
   const StatusOr<std::vector<BenchmarkSequence>> sequences =
       LoadBenchmark(flags.data_root, *options);
@@ -78,7 +87,7 @@ int RunEval(const EvalFlags& flags, const MonocularTrackerFactory& factory) {
 
 }  // namespace
 
-void AddEvalCommand(CLI::App& app, int* exit_code, MonocularTrackerFactory tracker_factory) {
+void AddEvalCommand(CLI::App& app, int* exit_code) {
   auto flags = std::make_shared<EvalFlags>();
   CLI::App* command = app.add_subcommand(
       "eval", "Score monocular 6DoF tracking on a BCOT (or RBOT) benchmark (paper Table 6)");
@@ -90,6 +99,11 @@ void AddEvalCommand(CLI::App& app, int* exit_code, MonocularTrackerFactory track
                       "per frame, frames 0..N-1 or 1..N-1)");
   command->add_flag("--online", flags->online,
                     "Run bcot's tracker with the protocol (GT start, reset after a 5deg/5cm loss)");
+  command->add_option("--tracker-config", flags->tracker_config.config_path,
+                      "Online: tracker options, as for bcot annotate (e.g. configs/track.yaml; "
+                      "default: the built-in annotation defaults)");
+  command->add_option("--tracker-set", flags->tracker_config.overrides,
+                      "Online: override of the tracker config, section.key=value (repeatable)");
   command->add_option("--out", flags->out_dir,
                       "Write eval.md, eval.csv, eval.json, add_curve.svg (and poses/ online) here");
   command->footer(
@@ -97,7 +111,7 @@ void AddEvalCommand(CLI::App& app, int* exit_code, MonocularTrackerFactory track
       "rbot_poses (poses_first.txt), reset_rotation_deg (5), reset_translation_mm (50), "
       "curve.max_fraction_of_d (0.1), curve.steps (100). The Markdown table goes to stdout.");
   command->callback(
-      [flags, exit_code, tracker_factory] { *exit_code = RunEval(*flags, tracker_factory); });
+      [flags, exit_code] { *exit_code = RunEval(*flags); });
 }
 
 }  // namespace bcot::tools

@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   bcot::tools::AddSynthCommand(app, &exit_code);
   bcot::tools::AddExportCommand(app, &exit_code);
-  bcot::tools::AddEvalCommand(app, &exit_code, /*tracker_factory=*/{});
+  bcot::tools::AddEvalCommand(app, &exit_code);
   bcot::tools::AddCalibrateCommand(app, &exit_code);
   bcot::tools::AddCaptureCommand(app, &exit_code);
   bcot::tools::AddAnnotateCommand(app, &exit_code);

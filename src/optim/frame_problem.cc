@@ -9,6 +9,7 @@
 #include <string>
 
 #include "bcot/core/se3.h"
+#include "bcot/optim/pose_damping_cost.h"
 #include "bcot/optim/se3_manifold.h"
 #include "bcot/optim/silhouette.h"
 #include "violations.h"
@@ -31,6 +32,17 @@ Status FrameProblemOptions::Validate() const {
   if (!(round_tolerance_mm >= 0.0) || !std::isfinite(round_tolerance_mm)) {
     violations.push_back(
         fmt::format("round_tolerance_mm = {}, must be finite and >= 0", round_tolerance_mm));
+  }
+  if (!(damping_translation_mm >= 0.0) || !std::isfinite(damping_translation_mm)) {
+    violations.push_back(fmt::format("damping_translation_mm = {}, must be finite and >= 0",
+                                     damping_translation_mm));
+  }
+  if (!(damping_rotation_deg >= 0.0) || !std::isfinite(damping_rotation_deg)) {
+    violations.push_back(fmt::format("damping_rotation_deg = {}, must be finite and >= 0",
+                                     damping_rotation_deg));
+  }
+  if (coarse_rounds < 1) {
+    violations.push_back(fmt::format("coarse_rounds = {}, must be >= 1", coarse_rounds));
   }
   if (num_threads < 1) {
     violations.push_back(fmt::format("num_threads = {}, must be >= 1", num_threads));
@@ -57,6 +69,8 @@ const char* FrameTerminationName(FrameTermination termination) {
 }
 
 namespace {
+
+constexpr double kPi = 3.14159265358979323846;
 
 // The template and cost options of pyramid level `level` (scale 2^level, see the header).
 struct LevelOptions {
@@ -87,6 +101,26 @@ double TotalEnergy(const std::vector<ViewTemplate>& templates, const double* par
   double total = 0.0;
   for (const ViewTemplate& t : templates) total += t.energy->Energy(parameters);
   return total;
+}
+
+// Adds PoseDampingCost towards `linearisation_pose` when the options switch it on.
+void AddDamping(const FrameProblemOptions& options, const std::vector<ViewTemplate>& templates,
+                const Eigen::Isometry3d& linearisation_pose, double* parameters,
+                ceres::Problem* problem) {
+  if (options.damping_translation_mm == 0.0 && options.damping_rotation_deg == 0.0) return;
+  double residual_count = 0.0;
+  for (const ViewTemplate& t : templates) {
+    residual_count += static_cast<double>(t.region_template->pixels.size());
+  }
+  const double root = std::sqrt(residual_count);
+  const double translation_scale =
+      options.damping_translation_mm > 0.0 ? root / options.damping_translation_mm : 0.0;
+  const double rotation_scale =
+      options.damping_rotation_deg > 0.0 ? root / (options.damping_rotation_deg * kPi / 180.0)
+                                         : 0.0;
+  problem->AddResidualBlock(
+      new PoseDampingCost(linearisation_pose, translation_scale, rotation_scale), nullptr,
+      parameters);
 }
 
 }  // namespace
@@ -124,7 +158,9 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
     int round;  // −1 on coarse levels
   };
   std::vector<Step> steps;
-  for (int level = options_.pyramid_levels - 1; level >= 1; --level) steps.push_back({level, -1});
+  for (int level = options_.pyramid_levels - 1; level >= 1; --level) {
+    for (int round = 0; round < options_.coarse_rounds; ++round) steps.push_back({level, -1});
+  }
   for (int round = 0; round < options_.rounds; ++round) steps.push_back({0, round});
 
   summary.termination = FrameTermination::kMaxRounds;
@@ -168,6 +204,7 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
                   where + ": the object is outside every view");
     }
     if (step.round == 0) summary.initial_energy = TotalEnergy(templates, x.data());
+    AddDamping(options_, templates, linearisation_pose, x.data(), &problem);
     problem.SetManifold(x.data(), new Se3Manifold());
 
     ceres::Solver::Options solver_options;

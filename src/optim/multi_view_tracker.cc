@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "bcot/core/se3.h"
 #include "bcot/optim/silhouette.h"
 #include "violations.h"
 
@@ -17,6 +18,10 @@ Status MultiViewTrackerOptions::Validate() const {
   if (!frame_status.ok()) violations.push_back(frame_status.message());
   const Status color_status = color.Validate();
   if (!color_status.ok()) violations.push_back("color: " + color_status.message());
+  if (!(velocity_prediction >= 0.0 && velocity_prediction <= 1.0)) {
+    violations.push_back(
+        fmt::format("velocity_prediction = {}, must be in [0, 1]", velocity_prediction));
+  }
   if (bootstrap_passes < 1) {
     violations.push_back(fmt::format("bootstrap_passes = {}, must be >= 1", bootstrap_passes));
   }
@@ -90,6 +95,7 @@ Status MultiViewTracker::Reset(const std::vector<cv::Mat3b>& images,
                                const Eigen::Isometry3d& rig_from_objcentre) {
   BCOT_RETURN_IF_ERROR(CheckImages(images));
   LearnColors(images, rig_from_objcentre, /*fresh=*/true);
+  previous_rig_from_objcentre_.reset();
   return Status::Ok();
 }
 
@@ -103,6 +109,7 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(const std::vector<cv::Mat3b>
     summary = Solve(images, rig_from_objcentre);
     if (!summary.usable()) break;
   }
+  previous_rig_from_objcentre_.reset();
   return summary;
 }
 
@@ -110,9 +117,34 @@ StatusOr<FrameSummary> MultiViewTracker::Track(const std::vector<cv::Mat3b>& ima
                                                Eigen::Isometry3d* rig_from_objcentre) {
   BCOT_CHECK(rig_from_objcentre != nullptr);
   BCOT_RETURN_IF_ERROR(CheckImages(images));
+  const Eigen::Isometry3d last = *rig_from_objcentre;
+  if (previous_rig_from_objcentre_.has_value()) {
+    *rig_from_objcentre =
+        PredictPose(*previous_rig_from_objcentre_, last, options_.velocity_prediction);
+  }
   FrameSummary summary = Solve(images, rig_from_objcentre);
-  if (summary.usable()) LearnColors(images, *rig_from_objcentre, /*fresh=*/false);
+  if (summary.usable()) {
+    LearnColors(images, *rig_from_objcentre, /*fresh=*/false);
+    previous_rig_from_objcentre_ = last;
+  } else {
+    // No estimate on this frame: stay at the last one and forget the velocity.
+    *rig_from_objcentre = last;
+    previous_rig_from_objcentre_.reset();
+  }
   return summary;
+}
+
+Eigen::Isometry3d PredictPose(const Eigen::Isometry3d& rig_from_objcentre_before,
+                              const Eigen::Isometry3d& rig_from_objcentre_last, double fraction) {
+  // Angular velocity in the rig frame, R_last·R_beforeᵀ, applied again (scaled); the object
+  // centre continues along its last displacement.
+  const Eigen::Matrix3d rotation_step =
+      rig_from_objcentre_last.linear() * rig_from_objcentre_before.linear().transpose();
+  Eigen::Isometry3d predicted = rig_from_objcentre_last;
+  predicted.linear() = ExpSO3(fraction * LogSO3(rotation_step)) * rig_from_objcentre_last.linear();
+  predicted.translation() +=
+      fraction * (rig_from_objcentre_last.translation() - rig_from_objcentre_before.translation());
+  return predicted;
 }
 
 }  // namespace bcot

@@ -126,6 +126,10 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
         BCOT_RETURN_IF_ERROR(m.GetOptional("rounds", &frame.rounds));
         BCOT_RETURN_IF_ERROR(m.GetOptional("iterations", &frame.iterations));
         BCOT_RETURN_IF_ERROR(m.GetOptional("pyramid_levels", &frame.pyramid_levels));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("coarse_rounds", &frame.coarse_rounds));
+        BCOT_RETURN_IF_ERROR(
+            m.GetOptional("damping_translation_mm", &frame.damping_translation_mm));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("damping_rotation_deg", &frame.damping_rotation_deg));
         BCOT_RETURN_IF_ERROR(m.GetOptional("round_tolerance_deg", &frame.round_tolerance_deg));
         BCOT_RETURN_IF_ERROR(m.GetOptional("round_tolerance_mm", &frame.round_tolerance_mm));
         return m.GetOptional("num_threads", &frame.num_threads);
@@ -187,12 +191,15 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
   BCOT_RETURN_IF_ERROR(ParseSection(
       root, "tracker",
       [&](YamlMap& m) -> Status {
+        BCOT_RETURN_IF_ERROR(
+            m.GetOptional("velocity_prediction", &o->tracker.velocity_prediction));
         return m.GetOptional("bootstrap_passes", &o->tracker.bootstrap_passes);
       },
       [&]() -> Status {
-        if (o->tracker.bootstrap_passes >= 1) return Status::Ok();
-        return Status::InvalidConfig(
-            fmt::format("bootstrap_passes = {}, must be >= 1", o->tracker.bootstrap_passes));
+        MultiViewTrackerOptions own;  // this section's fields only
+        own.velocity_prediction = o->tracker.velocity_prediction;
+        own.bootstrap_passes = o->tracker.bootstrap_passes;
+        return own.Validate();
       }));
 
   BCOT_RETURN_IF_ERROR(ParseSection(
@@ -263,6 +270,9 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
   line("rounds", number(f.rounds));
   line("iterations", number(f.iterations));
   line("pyramid_levels", number(f.pyramid_levels));
+  line("coarse_rounds", number(f.coarse_rounds));
+  line("damping_translation_mm", number(f.damping_translation_mm));
+  line("damping_rotation_deg", number(f.damping_rotation_deg));
   line("round_tolerance_deg", number(f.round_tolerance_deg));
   line("round_tolerance_mm", number(f.round_tolerance_mm));
   line("num_threads", number(f.num_threads));
@@ -287,6 +297,7 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
   line("local_region_spacing_px", number(c.local_region_spacing_px));
   line("local_anchor_fraction", number(c.local_anchor_fraction));
   section("tracker");
+  line("velocity_prediction", number(o.tracker.velocity_prediction));
   line("bootstrap_passes", number(o.tracker.bootstrap_passes));
   section("views");
   line("cameras", List(o.views.cameras, Quote));

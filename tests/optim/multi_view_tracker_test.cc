@@ -54,11 +54,13 @@ TEST(MultiViewTrackerOptionsTest, ValidateListsEveryViolation) {
   MultiViewTrackerOptions options;
   options.bootstrap_passes = 0;
   options.frame.rounds = 0;
+  options.velocity_prediction = 1.5;
   options.color.bins_per_channel = 3;
   const Status status = options.Validate();
   ASSERT_EQ(status.code(), StatusCode::kInvalidConfig);
   EXPECT_THAT(status.message(), HasSubstr("bootstrap_passes = 0"));
   EXPECT_THAT(status.message(), HasSubstr("rounds = 0"));
+  EXPECT_THAT(status.message(), HasSubstr("velocity_prediction = 1.5"));
   EXPECT_THAT(status.message(), HasSubstr("bins_per_channel = 3"));
 }
 
@@ -122,7 +124,47 @@ TEST_F(MultiViewTrackerTest, TracksASmoothMotion) {
         tracker->Track(RenderViews(*caster_, scene, truth, 50 + 2 * frame), &pose);
     ASSERT_TRUE(summary.ok()) << summary.status().message();
     ASSERT_TRUE(summary->usable()) << summary->message;
-    std::printf("frame %d: %.4f deg %.4f mm\n", frame, test::RotationErrorDeg(pose, truth), test::TranslationErrorMm(pose, truth));
+    EXPECT_THAT(pose, test::PoseNear(truth, 0.2, 0.2)) << "frame " << frame;
+  }
+}
+
+TEST(PredictPoseTest, ContinuesAConstantMotionAboutTheObjectCentre) {
+  Eigen::Isometry3d before = Eigen::Isometry3d::Identity();
+  before.linear() = ExpSO3(Eigen::Vector3d(0.3, -0.2, 0.9));
+  before.translation() = Eigen::Vector3d(10.0, -20.0, 600.0);
+  const Eigen::Matrix3d rotation_step = ExpSO3(Eigen::Vector3d(0.05, 0.1, -0.08));
+  const Eigen::Vector3d displacement(12.0, -3.0, 7.0);
+  auto step = [&](const Eigen::Isometry3d& pose) {
+    Eigen::Isometry3d next = pose;
+    next.linear() = rotation_step * pose.linear();
+    next.translation() += displacement;
+    return next;
+  };
+  const Eigen::Isometry3d last = step(before);
+  EXPECT_THAT(PredictPose(before, last, 1.0), test::PoseNear(step(last), 1e-9, 1e-9));
+  EXPECT_THAT(PredictPose(before, last, 0.0), test::PoseNear(last, 1e-9, 1e-9));
+  const Eigen::Isometry3d half = PredictPose(before, last, 0.5);
+  EXPECT_NEAR(test::TranslationErrorMm(half, last), 0.5 * displacement.norm(), 1e-9);
+  EXPECT_NEAR(test::RotationErrorDeg(half, last),
+              0.5 * LogSO3(rotation_step).norm() * 180.0 / test::kTestPi, 1e-9);
+}
+
+// Fast motion: 6° and 25 mm (about 30 px) per frame, more than one band (12 px) can capture
+// from the last pose. Constant-velocity prediction starts each solve near the truth.
+TEST_F(MultiViewTrackerTest, VelocityPredictionFollowsAFastMotion) {
+  const test::BinocularScene scene;
+  const std::unique_ptr<MultiViewTracker> tracker = MakeTracker(scene, /*binocular=*/true);
+  Eigen::Isometry3d truth = scene.rig_from_objcentre;
+  Eigen::Isometry3d pose = truth;
+  ASSERT_TRUE(tracker->Reset(RenderViews(*caster_, scene, truth, 70), pose).ok());
+  const Eigen::Vector3d axis = Eigen::Vector3d(-0.4, 1.0, 0.3).normalized();
+  for (int frame = 1; frame <= 4; ++frame) {
+    truth.linear() = ExpSO3(axis * 6.0 * test::kTestPi / 180.0) * truth.linear();
+    truth.translation() += Eigen::Vector3d(20.0, -12.0, 8.0);
+    const StatusOr<FrameSummary> summary =
+        tracker->Track(RenderViews(*caster_, scene, truth, 70 + 2 * frame), &pose);
+    ASSERT_TRUE(summary.ok()) << summary.status().message();
+    ASSERT_TRUE(summary->usable()) << summary->message;
     EXPECT_THAT(pose, test::PoseNear(truth, 0.2, 0.2)) << "frame " << frame;
   }
 }

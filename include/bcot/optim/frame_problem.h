@@ -50,10 +50,19 @@ struct FrameProblemOptions {
   // Pyramid levels (see the header comment); in [1, 6]. 1 = full resolution only; L runs
   // levels L−1..1 once before the rounds.
   int pyramid_levels = 3;
+  // Rounds (each re-renders the templates) on every coarse level; >= 1. The linearised
+  // template is only valid within about a band of the pose it was rendered at, so a large
+  // inter-frame motion needs several re-linearisations before level 0.
+  int coarse_rounds = 1;
   // Stop after a round that moved the pose by less than both tolerances (rotation in degrees,
   // translation in mm); >= 0, 0 = always run every round.
   double round_tolerance_deg = 1e-4;
   double round_tolerance_mm = 1e-3;
+  // Damping of every solve towards the pose its templates were rendered at (pose_damping_cost.h):
+  // σ_t (mm) and σ_r (deg) of ½N(|Δt|²/σ_t² + |Δφ|²/σ_r²), N the level's residual count;
+  // >= 0, 0 switches the term off. Large values damp little.
+  double damping_translation_mm = 0.0;
+  double damping_rotation_deg = 0.0;
   // Band, stride and contour sampling of the templates at level 0.
   RegionTemplateOptions region;
   // Residual form, Heaviside slope (at level 0) and probability floor. Its view_weight is
