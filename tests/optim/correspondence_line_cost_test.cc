@@ -80,7 +80,9 @@ TEST(FrameProblemOptionsTest, SparseEnergyNeedsAPositiveLineWeight) {
   options.lines.weight = 0.0;
   EXPECT_TRUE(options.Validate().ok());  // dense: the lines are unused
   options.energy = RegionEnergy::kCombined;
-  EXPECT_THAT(options.Validate().message(), HasSubstr("lines.weight = 0"));
+  const Status status = options.Validate();
+  ASSERT_EQ(status.code(), StatusCode::kInvalidConfig);
+  EXPECT_THAT(status.message(), HasSubstr("lines.weight = 0"));
 }
 
 // A clean, blurred step at +1.3 px: the distribution's mean finds it to a small fraction of a
@@ -114,7 +116,12 @@ TEST_F(CorrespondenceLineTest, LinesAtTheTruthMeasureNoOffset) {
       MakeLines(camera, image, test::RigFromObjcentre(scenario.cam_from_objcentre));
   ASSERT_GT(lines.lines.size(), 150u);
   std::vector<double> offsets;
-  for (const CorrespondenceLine& line : lines.lines) offsets.push_back(std::abs(line.mean_px));
+  double signed_sum = 0.0;
+  for (const CorrespondenceLine& line : lines.lines) {
+    offsets.push_back(std::abs(line.mean_px));
+    signed_sum += line.mean_px;
+  }
+  std::printf("mean signed mu %.3f px\n", signed_sum / offsets.size());
   std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
   std::printf("%zu lines of %d (short %d, off image %d, ambiguous %d), median |mu| %.3f px\n",
               lines.lines.size(), lines.candidates, lines.rejected_short,
@@ -173,9 +180,10 @@ class SparseEnergyConvergenceTest : public test::BunnyCasterTest,
 
 // The acceptance test of the joint solver (multi_view_tracker_test.cc: binocular, 90° apart,
 // 5° / 10 mm → < 0.1° / 0.2 mm with the annotation setting), run with the sparse and the
-// combined energy at the same tolerances; and camera 0 alone, where depth is weakly observed,
-// to the rotation tolerance and 2 mm (a monocular solve of this bunny at 450 mm leaves ~1 mm
-// of depth error with the dense energy as well; see SecondViewRemovesTheDepthErrorOfTheFirst).
+// combined energy at the same tolerances. And camera 0 alone, where depth and the rotations
+// that move the silhouette little are weakly observed: < 0.5° / 1 mm. The dense energy, run
+// through this same test on this scene, lands at 0.17–0.24° / 0.20–0.73 mm for these seeds
+// (sparse measured 0.05–0.39° / 0.10–0.57 mm, combined 0.09–0.28° / 0.10–0.41 mm).
 TEST_P(SparseEnergyConvergenceTest, RecoversAPerturbedFrame) {
   const test::BinocularScene scene;
   const std::vector<cv::Mat3b> images = {
@@ -203,7 +211,8 @@ TEST_P(SparseEnergyConvergenceTest, RecoversAPerturbedFrame) {
                   test::TranslationErrorMm(pose, scene.rig_from_objcentre));
       EXPECT_TRUE(summary->usable()) << summary->message;
       EXPECT_GT(summary->views[0].lines, 100);
-      EXPECT_THAT(pose, test::PoseNear(scene.rig_from_objcentre, 0.1, binocular ? 0.2 : 2.0))
+      EXPECT_THAT(pose, test::PoseNear(scene.rig_from_objcentre, binocular ? 0.1 : 0.5,
+                                           binocular ? 0.2 : 1.0))
           << (binocular ? "binocular" : "monocular") << " seed " << seed;
     }
   }
