@@ -7,8 +7,10 @@
 # 1280×1024 with the annotation setting.
 #
 # Then the issue-7 protocol: cameras 90° apart (C-0/C-1), one column per region energy (dense,
-# sparse, combined), at 640×480 and 960×768, on four objects (spool, the thin turbine, the
-# squirrel, and a glossy bunny), with per-axis mean errors and the largest per-frame errors.
+# sparse, combined), at 640×480 and 960×768, on four objects (the handle, the thin turbine, the
+# squirrel, and a glossy bunny; no rotationally symmetric object, whose rotation about its axis
+# a silhouette cannot observe), with per-axis mean errors and the largest per-frame errors;
+# per-object means on stderr.
 #
 # Usage: scripts/bench_precision.sh [frames per object, default 100] [energy-protocol frames,
 #        default 40]
@@ -38,8 +40,9 @@ mkdir -p "$work"
 
 energy_objects=${BCOT_BENCH_ENERGY_OBJECTS:-}
 if [ -z "$energy_objects" ]; then
-  energy_objects="data/meshes/spool.off,data/meshes/bunny.obj+glossy"
-  for extra in ../shared/data/meshes/turbine.off ../shared/data/meshes/squirrel_demo_low.obj; do
+  energy_objects="data/meshes/bunny.obj+glossy"
+  for extra in ../shared/data/meshes/handle.off ../shared/data/meshes/turbine.off \
+    ../shared/data/meshes/squirrel_demo_low.obj; do
     if [ -f "$extra" ]; then energy_objects="$energy_objects,$extra"; fi
   done
 fi

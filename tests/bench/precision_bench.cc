@@ -209,6 +209,7 @@ int main(int argc, char** argv) {
         return Eigen::Isometry3d(rig_from_object * objcentre_from_template.inverse());
       };
       Accumulator& acc = results[columns[column]];
+      const Accumulator before = acc;
       Eigen::Isometry3d rig_from_objcentre = objcentre((*truth)[0]);
       if (!(*tracker)->Reset(load_images(0), rig_from_objcentre).ok()) return 1;
       for (int frame = 1; frame < sequence->num_frames; ++frame) {
@@ -238,8 +239,12 @@ int main(int argc, char** argv) {
         acc.max_rotation_deg = std::max(acc.max_rotation_deg, rotation);
         ++acc.frames;
       }
-      std::fprintf(stderr, "%s %s: %d frames, %d lost\n", name.c_str(), columns[column].c_str(),
-                   acc.frames, acc.lost);
+      const int frames = std::max(1, acc.frames - before.frames);
+      const Eigen::Vector3d mean_mm = (acc.translation_mm - before.translation_mm) / frames;
+      std::fprintf(stderr, "%s %s: %d frames, %d lost, mean r %.3f°, t %.3f %.3f %.3f mm\n",
+                   name.c_str(), columns[column].c_str(), acc.frames - before.frames,
+                   acc.lost - before.lost, (acc.rotation_deg - before.rotation_deg) / frames,
+                   mean_mm.x(), mean_mm.y(), mean_mm.z());
     }
   }
 

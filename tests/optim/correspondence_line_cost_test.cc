@@ -77,6 +77,7 @@ TEST(CorrespondenceLineOptionsTest, ValidateListsEveryViolation) {
 
 TEST(FrameProblemOptionsTest, SparseEnergyNeedsAPositiveLineWeight) {
   FrameProblemOptions options;
+  options.energy = RegionEnergy::kDense;
   options.lines.weight = 0.0;
   EXPECT_TRUE(options.Validate().ok());  // dense: the lines are unused
   options.energy = RegionEnergy::kCombined;

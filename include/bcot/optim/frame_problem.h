@@ -69,8 +69,10 @@ struct FrameProblemOptions {
   // ignored: each FrameView carries its own weight.
   RegionCostOptions cost;
   // The energy: dense (eq. 6 over the band), sparse (correspondence lines) or combined (the
-  // sum; lines.weight scales the sparse part). YAML: cost.energy.
-  RegionEnergy energy = RegionEnergy::kDense;
+  // sum; lines.weight scales the sparse part). YAML: cost.energy. Combined by default: on the
+  // 90° binocular synthetic protocol and the real BCOT Cat frames it was never the worst of
+  // the three and lost the fewest synthetic frames (see scripts/bench_precision.sh).
+  RegionEnergy energy = RegionEnergy::kCombined;
   // Correspondence lines of the sparse energy at level 0; coarse levels multiply its lengths
   // by 2^l like the dense band.
   CorrespondenceLineOptions lines;
