@@ -5,8 +5,8 @@
 //
 // For a line with centre c (contour point at T0, px), outward unit normal n and model point X
 // (O_o, projecting to ≈ c at T0):
-//   samples   s_k = k·h for integer k with s_k in [−inside_px, +outside_px] (h = scale_px,
-//             along n, px). Each sample's P_f is the mean of the bilinearly interpolated
+//   samples   s_k = k·h for integer k whose segment [s_k − h/2, s_k + h/2] lies in
+//             [−inside_px, +outside_px] (h = scale_px, along n, px). Each sample's P_f is the mean of the bilinearly interpolated
 //             posteriors at h points spread over its segment [s_k − h/2, s_k + h/2), so
 //             coarse scales average the image instead of aliasing it.
 //   hypothesis the contour sits at offset d: sample k is foreground with probability
@@ -26,7 +26,8 @@
 //
 // Rejection (documented rule; the counts are in CorrespondenceLines::rejected_*):
 //   too short   inside_px or outside_px < min_side_px (thin part, tight concavity);
-//   off image   the contour point is outside the image (the line itself is clipped to the
+//   off image   the contour point is outside the image or its model point is behind the
+//               camera (the line itself is clipped to the
 //               image, with room for the bilinear 2×2 neighbours, and then may be too short);
 //   ambiguous   σ > max_sigma_px (flat: no colour contrast along the line; multimodal: two
 //               edges compete, the variance of two separated modes is large), or the mode of
