@@ -6,12 +6,22 @@
 # Then single-thread speed: two views at 640×480 with the tracking setting, and the 90° pair at
 # 1280×1024 with the annotation setting.
 #
-# Usage: scripts/bench_precision.sh [frames per object, default 100]
+# Then the issue-7 protocol: cameras 90° apart (C-0/C-1), one column per region energy (dense,
+# sparse, combined), at 640×480 and 960×768, on four objects (the handle, the thin turbine, the
+# squirrel, and a glossy bunny; no rotationally symmetric object, whose rotation about its axis
+# a silhouette cannot observe), with per-axis mean errors and the largest per-frame errors;
+# per-object means on stderr.
+#
+# Usage: scripts/bench_precision.sh [frames per object, default 100] [energy-protocol frames,
+#        default 40]
 # Environment: BCOT_BENCH_WORK (sequence cache, default out/bench_precision),
-#              BCOT_BENCH_OBJECTS (comma-separated meshes; default 3 bundled + shared ones).
+#              BCOT_BENCH_OBJECTS (comma-separated meshes; default 3 bundled + shared ones),
+#              BCOT_BENCH_ENERGY_OBJECTS (meshes of the energy protocol; `mesh+glossy` renders
+#              a glossy object), BCOT_BENCH_ONLY=energies (run only the energy protocol).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 frames=${1:-100}
+energy_frames=${2:-40}
 work=${BCOT_BENCH_WORK:-out/bench_precision}
 dir=build-bench
 cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
@@ -27,6 +37,29 @@ if [ -z "$objects" ]; then
   done
 fi
 mkdir -p "$work"
+
+energy_objects=${BCOT_BENCH_ENERGY_OBJECTS:-}
+if [ -z "$energy_objects" ]; then
+  energy_objects="data/meshes/bunny.obj+glossy"
+  for extra in ../shared/data/meshes/handle.off ../shared/data/meshes/turbine.off \
+    ../shared/data/meshes/squirrel_demo_low.obj; do
+    if [ -f "$extra" ]; then energy_objects="$energy_objects,$extra"; fi
+  done
+fi
+for size in 640x480 960x768; do
+  echo "== 90° binocular (C-0/C-1), $size, annotation setting, per energy, one thread"
+  "$bench" --config configs/annotate.yaml --work "$work/bin90" --frames "$energy_frames" \
+    --objects "$energy_objects" --settings C-0/C-1 --energies dense,sparse,combined \
+    --synth-set cameras.width="${size%x*}" --synth-set cameras.height="${size#*x}" \
+    --synth-set "cameras.arc_angles_deg=[90]" --synth-set "cameras.cone_angles_deg=[]"
+  echo
+done
+echo "== Speed per energy: C-0/C-1 (90°), 640x480, tracking setting (configs/track.yaml), one thread"
+"$bench" --config configs/track.yaml --work "$work/bin90" --frames "$energy_frames" \
+  --objects "$energy_objects" --settings C-0/C-1 --energies dense,sparse,combined \
+  --synth-set "cameras.arc_angles_deg=[90]" --synth-set "cameras.cone_angles_deg=[]"
+if [ "${BCOT_BENCH_ONLY:-}" = energies ]; then exit 0; fi
+echo
 
 echo "== Table 3 protocol, 640x480, annotation setting (configs/annotate.yaml)"
 "$bench" --config configs/annotate.yaml --work "$work" --frames "$frames" --objects "$objects"

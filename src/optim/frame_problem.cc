@@ -9,6 +9,7 @@
 #include <string>
 
 #include "bcot/core/se3.h"
+#include "bcot/optim/correspondence_line_cost.h"
 #include "bcot/optim/pose_damping_cost.h"
 #include "bcot/optim/se3_manifold.h"
 #include "bcot/optim/silhouette.h"
@@ -51,7 +52,29 @@ Status FrameProblemOptions::Validate() const {
   if (!region_status.ok()) violations.push_back(region_status.message());
   const Status cost_status = cost.Validate();
   if (!cost_status.ok()) violations.push_back(cost_status.message());
+  if (energy != RegionEnergy::kDense && energy != RegionEnergy::kSparse &&
+      energy != RegionEnergy::kCombined) {
+    violations.push_back(fmt::format("energy = {}, must be dense, sparse or combined",
+                                     static_cast<int>(energy)));
+  }
+  if (energy != RegionEnergy::kDense && lines.weight == 0.0) {
+    violations.push_back("lines.weight = 0, must be > 0 when the sparse energy is used");
+  }
+  const Status lines_status = lines.Validate();
+  if (!lines_status.ok()) violations.push_back(lines_status.message());
   return internal::JoinViolations("frame_problem", violations);
+}
+
+const char* RegionEnergyName(RegionEnergy energy) {
+  switch (energy) {
+    case RegionEnergy::kDense:
+      return "dense";
+    case RegionEnergy::kSparse:
+      return "sparse";
+    case RegionEnergy::kCombined:
+      return "combined";
+  }
+  return "unknown";
 }
 
 const char* FrameTerminationName(FrameTermination termination) {
@@ -76,6 +99,7 @@ constexpr double kPi = 3.14159265358979323846;
 struct LevelOptions {
   RegionTemplateOptions region;
   RegionCostOptions cost;
+  CorrespondenceLineOptions lines;
 };
 
 LevelOptions OptionsAtLevel(const FrameProblemOptions& options, int level) {
@@ -87,19 +111,34 @@ LevelOptions OptionsAtLevel(const FrameProblemOptions& options, int level) {
   result.region.contour.sample_spacing_px *= scale;
   result.cost = options.cost;
   result.cost.heaviside_slope /= scale;
+  result.lines = options.lines;
+  result.lines.scale_px *= scale;
+  result.lines.half_length_px *= scale;
+  result.lines.min_side_px *= scale;
+  result.lines.slope_px *= scale;
+  result.lines.min_sigma_px *= scale;
+  result.lines.max_sigma_px *= scale;
   return result;
 }
 
-// One view's linearisation at one level: the template and its energy evaluator.
+// One view's linearisation at one level: the energy evaluators of its dense template and of
+// its correspondence lines (either may be absent).
 struct ViewTemplate {
   int view = 0;
-  std::shared_ptr<const RegionTemplate> region_template;
-  std::unique_ptr<RegionCostFunction> energy;  // w·Σ F over every pixel
+  std::unique_ptr<RegionCostFunction> energy;                   // w·Σ F over every pixel
+  std::unique_ptr<CorrespondenceLineCostFunction> line_energy;  // ½Σ r² over every line
+
+  double Energy(const double* parameters) const {
+    double total = 0.0;
+    if (energy != nullptr) total += energy->Energy(parameters);
+    if (line_energy != nullptr) total += line_energy->Energy(parameters);
+    return total;
+  }
 };
 
 double TotalEnergy(const std::vector<ViewTemplate>& templates, const double* parameters) {
   double total = 0.0;
-  for (const ViewTemplate& t : templates) total += t.energy->Energy(parameters);
+  for (const ViewTemplate& t : templates) total += t.Energy(parameters);
   return total;
 }
 
@@ -110,7 +149,8 @@ void AddDamping(const FrameProblemOptions& options, const std::vector<ViewTempla
   if (options.damping_translation_mm == 0.0 && options.damping_rotation_deg == 0.0) return;
   double residual_count = 0.0;
   for (const ViewTemplate& t : templates) {
-    residual_count += static_cast<double>(t.region_template->pixels.size());
+    if (t.energy != nullptr) residual_count += t.energy->num_residuals();
+    if (t.line_energy != nullptr) residual_count += t.line_energy->num_residuals();
   }
   const double root = std::sqrt(residual_count);
   const double translation_scale =
@@ -178,25 +218,43 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
           RenderSilhouette(caster_, *view.camera,
                            view.cam_from_rig * linearisation_pose * objcentre_from_template,
                            level_options.region.contour);
-      StatusOr<RegionTemplate> region_template = BuildRegionTemplate(
-          caster_, *view.camera, view.cam_from_rig, linearisation_pose, *view.image,
-          *view.color_model, silhouette, level_options.region);
-      // Options were validated and the view checked above: a failure here is a bug.
-      BCOT_CHECK(region_template.ok());
-      if (region_template->pixels.empty()) continue;
       ViewTemplate t;
       t.view = static_cast<int>(v);
-      t.region_template =
-          std::make_shared<const RegionTemplate>(std::move(region_template).value());
-      RegionCostOptions cost_options = level_options.cost;
-      cost_options.view_weight = view.weight;
-      const int pixel_count = static_cast<int>(t.region_template->pixels.size());
-      t.energy = std::make_unique<RegionCostFunction>(*view.camera, view.cam_from_rig,
-                                                      t.region_template, 0, pixel_count,
-                                                      cost_options);
-      AddRegionResidualBlocks(*view.camera, view.cam_from_rig, t.region_template, cost_options,
-                              x.data(), &problem);
-      if (step.level == 0) summary.views[v].pixels = pixel_count;
+      if (options_.energy != RegionEnergy::kSparse) {
+        StatusOr<RegionTemplate> region_template = BuildRegionTemplate(
+            caster_, *view.camera, view.cam_from_rig, linearisation_pose, *view.image,
+            *view.color_model, silhouette, level_options.region);
+        // Options were validated and the view checked above: a failure here is a bug.
+        BCOT_CHECK(region_template.ok());
+        if (!region_template->pixels.empty()) {
+          auto shared = std::make_shared<const RegionTemplate>(std::move(region_template).value());
+          RegionCostOptions cost_options = level_options.cost;
+          cost_options.view_weight = view.weight;
+          const int pixel_count = static_cast<int>(shared->pixels.size());
+          t.energy = std::make_unique<RegionCostFunction>(*view.camera, view.cam_from_rig, shared,
+                                                          0, pixel_count, cost_options);
+          AddRegionResidualBlocks(*view.camera, view.cam_from_rig, shared, cost_options,
+                                  x.data(), &problem);
+          if (step.level == 0) summary.views[v].pixels = pixel_count;
+        }
+      }
+      if (options_.energy != RegionEnergy::kDense) {
+        StatusOr<CorrespondenceLines> lines = BuildCorrespondenceLines(
+            caster_, *view.camera, view.cam_from_rig, linearisation_pose, *view.image,
+            *view.color_model, silhouette, level_options.lines);
+        BCOT_CHECK(lines.ok());
+        if (!lines->lines.empty()) {
+          auto shared = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
+          const double weight = view.weight * level_options.lines.weight;
+          t.line_energy = std::make_unique<CorrespondenceLineCostFunction>(
+              *view.camera, view.cam_from_rig, shared, weight);
+          problem.AddResidualBlock(new CorrespondenceLineCostFunction(
+                                       *view.camera, view.cam_from_rig, shared, weight),
+                                   nullptr, x.data());
+          if (step.level == 0) summary.views[v].lines = static_cast<int>(shared->lines.size());
+        }
+      }
+      if (t.energy == nullptr && t.line_energy == nullptr) continue;
       templates.push_back(std::move(t));
     }
     if (templates.empty()) {
@@ -222,7 +280,7 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
 
     summary.final_energy = 0.0;
     for (const ViewTemplate& t : templates) {
-      const double energy = t.energy->Energy(x.data());
+      const double energy = t.Energy(x.data());
       summary.views[t.view].energy = energy;
       summary.final_energy += energy;
     }

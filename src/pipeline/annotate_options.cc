@@ -138,6 +138,8 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
         FrameProblemOptions own = frame;  // this section's fields only
         own.region = RegionTemplateOptions();
         own.cost = RegionCostOptions();
+        own.energy = RegionEnergy::kDense;
+        own.lines = CorrespondenceLineOptions();
         return own.Validate();
       }));
 
@@ -162,9 +164,30 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
         BCOT_RETURN_IF_ERROR(GetEnum(m, "form", {"sqrt_energy", "irls"}, &form));
         cost.form = static_cast<RegionResidualForm>(form);
         BCOT_RETURN_IF_ERROR(m.GetOptional("heaviside_slope", &cost.heaviside_slope));
+        int energy = static_cast<int>(frame.energy);
+        BCOT_RETURN_IF_ERROR(GetEnum(m, "energy", {"dense", "sparse", "combined"}, &energy));
+        frame.energy = static_cast<RegionEnergy>(energy);
         return m.GetOptional("probability_floor", &cost.probability_floor);
       },
       [&] { return cost.Validate(); }));
+
+  CorrespondenceLineOptions& lines = frame.lines;
+  BCOT_RETURN_IF_ERROR(ParseSection(
+      root, "lines",
+      [&](YamlMap& m) -> Status {
+        BCOT_RETURN_IF_ERROR(m.GetOptional("num_lines", &lines.num_lines));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("scale_px", &lines.scale_px));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("half_length_px", &lines.half_length_px));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("min_side_px", &lines.min_side_px));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("slope_px", &lines.slope_px));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("amplitude", &lines.amplitude));
+        BCOT_RETURN_IF_ERROR(
+            m.GetOptional("hypothesis_subdivisions", &lines.hypothesis_subdivisions));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("min_sigma_px", &lines.min_sigma_px));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("max_sigma_px", &lines.max_sigma_px));
+        return m.GetOptional("weight", &lines.weight);
+      },
+      [&] { return lines.Validate(); }));
 
   ColorModelOptions& color = o->tracker.color;
   BCOT_RETURN_IF_ERROR(ParseSection(
@@ -286,6 +309,18 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
   line("form", FormName(f.cost.form));
   line("heaviside_slope", number(f.cost.heaviside_slope));
   line("probability_floor", number(f.cost.probability_floor));
+  line("energy", RegionEnergyName(f.energy));
+  section("lines");
+  line("num_lines", number(f.lines.num_lines));
+  line("scale_px", number(f.lines.scale_px));
+  line("half_length_px", number(f.lines.half_length_px));
+  line("min_side_px", number(f.lines.min_side_px));
+  line("slope_px", number(f.lines.slope_px));
+  line("amplitude", number(f.lines.amplitude));
+  line("hypothesis_subdivisions", number(f.lines.hypothesis_subdivisions));
+  line("min_sigma_px", number(f.lines.min_sigma_px));
+  line("max_sigma_px", number(f.lines.max_sigma_px));
+  line("weight", number(f.lines.weight));
   section("color");
   line("kind", KindName(c.kind));
   line("bins_per_channel", number(c.bins_per_channel));

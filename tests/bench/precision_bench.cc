@@ -10,7 +10,12 @@
 // Markdown table over all objects with the paper's row beside ours, and the mean time per frame.
 //
 // Usage: precision_bench --config configs/annotate.yaml --work DIR [--frames N]
-//          [--objects mesh1,mesh2,...] [--settings C-0,C-0/C-7,...] [--set synth.key=value]...
+//          [--objects mesh1,mesh2+glossy,...] [--settings C-0,C-0/C-7,...]
+//          [--energies dense,sparse,combined] [--synth-set key=value]... [--set key=value]...
+// An object written `mesh+glossy` is rendered with a strong, sharp specular lobe
+// (object.specular 1.2, shininess 150, as configs/synth/glossy_fast.yaml). --energies runs every
+// setting once per region energy (cost.energy) and prints one column per setting and energy;
+// the table also gives the largest per-frame translation and rotation errors.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -76,6 +81,7 @@ struct Accumulator {
   double rotation_deg = 0.0;
   Eigen::Vector3d translation_mm = Eigen::Vector3d::Zero();
   double max_translation_mm = 0.0;
+  double max_rotation_deg = 0.0;
   int frames = 0;
   int lost = 0;
   double milliseconds = 0.0;
@@ -103,6 +109,7 @@ int main(int argc, char** argv) {
                                        "C-0/C-10", "C-0/C-11", "C-0/C-12"};
   std::vector<std::string> synth_overrides;
   std::vector<std::string> annotate_overrides;
+  std::vector<std::string> energies;
   app.add_option("--config", config_path, "annotate config (configs/annotate.yaml or track.yaml)")
       ->required();
   app.add_option("--work", work_dir, "Directory for the synthetic sequences (reused if present)")
@@ -113,17 +120,45 @@ int main(int argc, char** argv) {
   app.add_option("--settings", settings, "Camera sets: C-0, C-0/C-k")->delimiter(',');
   app.add_option("--synth-set", synth_overrides, "Override of the synth config (repeatable)");
   app.add_option("--set", annotate_overrides, "Override of the annotate config (repeatable)");
+  app.add_option("--energies", energies, "Region energies to compare (dense, sparse, combined)")
+      ->delimiter(',');
   CLI11_PARSE(app, argc, argv);
 
-  StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, annotate_overrides);
-  if (!options.ok()) return Fail(options.status());
+  // One annotate configuration per column group: the config itself, or one per energy.
+  std::vector<std::pair<std::string, AnnotateOptions>> configurations;
+  if (energies.empty()) energies.push_back("");
+  for (const std::string& energy : energies) {
+    std::vector<std::string> overrides = annotate_overrides;
+    if (!energy.empty()) overrides.push_back("cost.energy=" + energy);
+    StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, overrides);
+    if (!options.ok()) return Fail(options.status());
+    configurations.emplace_back(energy, *options);
+  }
+  std::vector<std::string> columns;
+  for (const auto& configuration : configurations) {
+    for (const std::string& setting : settings) {
+      columns.push_back(configuration.first.empty() ? setting
+                                                    : setting + " " + configuration.first);
+    }
+  }
 
   std::map<std::string, Accumulator> results;
   SynthOptions layout;  // of the last object (all share the layout)
   for (size_t o = 0; o < objects.size(); ++o) {
-    const std::string name = std::filesystem::path(objects[o]).stem().string();
+    std::string mesh_path = objects[o];
     std::vector<std::string> overrides = synth_overrides;
-    overrides.push_back("object.mesh=" + std::filesystem::absolute(objects[o]).string());
+    const std::string glossy_suffix = "+glossy";
+    const bool glossy = mesh_path.size() > glossy_suffix.size() &&
+                        mesh_path.compare(mesh_path.size() - glossy_suffix.size(),
+                                          std::string::npos, glossy_suffix) == 0;
+    if (glossy) {
+      mesh_path.resize(mesh_path.size() - glossy_suffix.size());
+      overrides.push_back("object.specular=1.2");
+      overrides.push_back("object.shininess=150");
+    }
+    const std::string name =
+        std::filesystem::path(mesh_path).stem().string() + (glossy ? "_glossy" : "");
+    overrides.push_back("object.mesh=" + std::filesystem::absolute(mesh_path).string());
     overrides.push_back("object.name=" + name);
     overrides.push_back(fmt::format("motion.num_frames={}", num_frames));
     overrides.push_back(fmt::format("seed={}", 11 + o));
@@ -150,7 +185,9 @@ int main(int argc, char** argv) {
     const Eigen::Isometry3d objcentre_from_template = mesh->objcentre_from_template();
     const Eigen::Isometry3d cam0_from_rig = sequence->rig[0].cam_from_rig;
 
-    for (const std::string& setting : settings) {
+    for (size_t column = 0; column < columns.size(); ++column) {
+      const std::string& setting = settings[column % settings.size()];
+      const AnnotateOptions* options = &configurations[column / settings.size()].second;
       std::vector<int> cameras = {0};
       if (setting != "C-0") cameras.push_back(std::stoi(setting.substr(setting.rfind('-') + 1)));
       std::vector<TrackedView> views;
@@ -171,7 +208,8 @@ int main(int argc, char** argv) {
       auto objcentre = [&](const Eigen::Isometry3d& rig_from_object) {
         return Eigen::Isometry3d(rig_from_object * objcentre_from_template.inverse());
       };
-      Accumulator& acc = results[setting];
+      Accumulator& acc = results[columns[column]];
+      const Accumulator before = acc;
       Eigen::Isometry3d rig_from_objcentre = objcentre((*truth)[0]);
       if (!(*tracker)->Reset(load_images(0), rig_from_objcentre).ok()) return 1;
       for (int frame = 1; frame < sequence->num_frames; ++frame) {
@@ -198,10 +236,15 @@ int main(int argc, char** argv) {
         acc.rotation_deg += rotation;
         acc.translation_mm += translation;
         acc.max_translation_mm = std::max(acc.max_translation_mm, translation.norm());
+        acc.max_rotation_deg = std::max(acc.max_rotation_deg, rotation);
         ++acc.frames;
       }
-      std::fprintf(stderr, "%s %s: %d frames, %d lost\n", name.c_str(), setting.c_str(),
-                   acc.frames, acc.lost);
+      const int frames = std::max(1, acc.frames - before.frames);
+      const Eigen::Vector3d mean_mm = (acc.translation_mm - before.translation_mm) / frames;
+      std::fprintf(stderr, "%s %s: %d frames, %d lost, mean r %.3f°, t %.3f %.3f %.3f mm\n",
+                   name.c_str(), columns[column].c_str(), acc.frames - before.frames,
+                   acc.lost - before.lost, (acc.rotation_deg - before.rotation_deg) / frames,
+                   mean_mm.x(), mean_mm.y(), mean_mm.z());
     }
   }
 
@@ -211,20 +254,23 @@ int main(int argc, char** argv) {
   std::printf("Errors in C-0's frame over tracked frames (lost frames excluded, reset to GT).\n\n");
   std::string header = "| | ";
   std::string rule = "|---|";
-  for (const std::string& setting : settings) {
-    header += " " + setting + " |";
+  for (const std::string& column : columns) {
+    header += " " + column + " |";
     rule += "---:|";
   }
   std::printf("%s\n%s\n", header.c_str(), rule.c_str());
   std::string angles = "| included angle |";
-  for (const std::string& setting : settings) {
+  for (size_t column = 0; column < columns.size(); ++column) {
+    const std::string& setting = settings[column % settings.size()];
     const int k = setting == "C-0" ? 0 : std::stoi(setting.substr(setting.rfind('-') + 1));
     angles += " " + AngleLabel(layout, k) + " |";
   }
   std::printf("%s\n", angles.c_str());
   auto row = [&](const char* label, auto value) {
     std::string line = fmt::format("| {} |", label);
-    for (const std::string& setting : settings) line += " " + value(setting) + " |";
+    for (size_t column = 0; column < columns.size(); ++column) {
+      line += " " + value(columns[column], settings[column % settings.size()]) + " |";
+    }
     std::printf("%s\n", line.c_str());
   };
   auto ours = [&](const std::string& s) -> const Accumulator& { return results[s]; };
@@ -237,29 +283,34 @@ int main(int argc, char** argv) {
     if (!paper_layout) return std::string("–");
     return it == PaperTable3().end() ? std::string("–") : field(it->second);
   };
-  row("r (°) bcot", [&](const std::string& s) { return mean(s, ours(s).rotation_deg); });
-  row("r (°) paper", [&](const std::string& s) {
+  row("r (°) bcot", [&](const std::string& s, const std::string&) { return mean(s, ours(s).rotation_deg); });
+  row("r (°) paper", [&](const std::string&, const std::string& s) {
     return paper(s, [](const PaperRow& p) { return fmt::format("{:.2f}", p.r); });
   });
-  row("tx (mm) bcot", [&](const std::string& s) { return mean(s, ours(s).translation_mm.x()); });
-  row("tx (mm) paper", [&](const std::string& s) {
+  row("tx (mm) bcot", [&](const std::string& s, const std::string&) { return mean(s, ours(s).translation_mm.x()); });
+  row("tx (mm) paper", [&](const std::string&, const std::string& s) {
     return paper(s, [](const PaperRow& p) { return fmt::format("{:.2f}", p.tx); });
   });
-  row("ty (mm) bcot", [&](const std::string& s) { return mean(s, ours(s).translation_mm.y()); });
-  row("ty (mm) paper", [&](const std::string& s) {
+  row("ty (mm) bcot", [&](const std::string& s, const std::string&) { return mean(s, ours(s).translation_mm.y()); });
+  row("ty (mm) paper", [&](const std::string&, const std::string& s) {
     return paper(s, [](const PaperRow& p) { return fmt::format("{:.2f}", p.ty); });
   });
-  row("tz (mm) bcot", [&](const std::string& s) { return mean(s, ours(s).translation_mm.z()); });
-  row("tz (mm) paper", [&](const std::string& s) {
+  row("tz (mm) bcot", [&](const std::string& s, const std::string&) { return mean(s, ours(s).translation_mm.z()); });
+  row("tz (mm) paper", [&](const std::string&, const std::string& s) {
     return paper(s, [](const PaperRow& p) { return fmt::format("{:.2f}", p.tz); });
   });
-  row("max ‖t‖ (mm) bcot",
-      [&](const std::string& s) { return fmt::format("{:.3f}", ours(s).max_translation_mm); });
-  row("lost bcot", [&](const std::string& s) { return fmt::format("{}", ours(s).lost); });
-  row("lost paper", [&](const std::string& s) {
+  row("max ‖t‖ (mm) bcot", [&](const std::string& s, const std::string&) {
+    return fmt::format("{:.3f}", ours(s).max_translation_mm);
+  });
+  row("max r (°) bcot", [&](const std::string& s, const std::string&) {
+    return fmt::format("{:.3f}", ours(s).max_rotation_deg);
+  });
+  row("lost bcot",
+      [&](const std::string& s, const std::string&) { return fmt::format("{}", ours(s).lost); });
+  row("lost paper", [&](const std::string&, const std::string& s) {
     return paper(s, [](const PaperRow& p) { return fmt::format("{}", p.lost); });
   });
-  row("ms/frame (1 thread)", [&](const std::string& s) {
+  row("ms/frame (1 thread)", [&](const std::string& s, const std::string&) {
     return fmt::format("{:.1f}", ours(s).milliseconds / std::max(1, ours(s).timed_frames));
   });
   return 0;

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -97,6 +99,45 @@ inline cv::Mat3b RenderTestImage(const RayCaster& caster, const Camera& camera,
     }
   }
   return image;
+}
+
+// Poses of the Jacobian checks (STYLE.md "Cost functions"): identity-ish, near-π rotation,
+// object at the image border (with lens distortion), grazing view. `cam_from_objcentre` is
+// the truth of the test image.
+struct Scenario {
+  std::string name;
+  Eigen::Isometry3d cam_from_objcentre;  // truth (the image)
+  bool distortion = false;
+};
+
+inline std::vector<Scenario> GradientScenarios() {
+  return {
+      {"near_identity_rotation",
+       test::MakeCamFromObjcentre(Eigen::Vector3d(1e-4, -2e-4, 5e-5), {5.0, -3.0, 450.0})},
+      {"near_pi_rotation",
+       test::MakeCamFromObjcentre((kTestPi - 1e-2) * Eigen::Vector3d(0.2, 0.9, 0.3).normalized(),
+                                  {-10.0, 8.0, 480.0})},
+      // The object's centre projects ~15 px from the right border: part of it is cut off.
+      {"object_at_image_border",
+       test::MakeCamFromObjcentre(Eigen::Vector3d(0.3, 0.5, 0.1), {250.0, 20.0, 450.0}), true},
+      // The flanges' flat faces (normal = object x) are seen 3° from edge-on.
+      {"grazing_view", test::MakeCamFromObjcentre(Eigen::Vector3d(0.0, 3.0 * kTestPi / 180.0, 0.0),
+                                                  {30.0, -20.0, 420.0})},
+  };
+}
+
+inline Camera ScenarioCamera(const Scenario& scenario) {
+  Camera camera = test::TestCamera();
+  if (scenario.distortion) camera.distortion = {-0.12, 0.05, 1e-3, -5e-4, 0.0};
+  return camera;
+}
+
+inline Vector6d SeededTwist(std::mt19937& rng, double rotation_rad, double translation_mm) {
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Vector6d twist;
+  for (int k = 0; k < 3; ++k) twist[k] = translation_mm * uniform(rng);
+  for (int k = 3; k < 6; ++k) twist[k] = rotation_rad * uniform(rng);
+  return twist;
 }
 
 // The bunny scaled to a 150 mm diameter: asymmetric, so every rotation is observable.

@@ -20,6 +20,9 @@ TEST(AnnotateOptionsTest, DefaultsRoundTripThroughYaml) {
   AnnotateOptions options;
   options.tracker.frame.rounds = 3;
   options.tracker.frame.cost.form = RegionResidualForm::kIrls;
+  options.tracker.frame.energy = RegionEnergy::kCombined;
+  options.tracker.frame.lines.num_lines = 150;
+  options.tracker.frame.lines.weight = 0.5;
   options.tracker.color.kind = ColorModelKind::kLocal;
   options.views.cameras = {"left", "no"};
   options.views.weights = {1.0, 0.25};
@@ -29,6 +32,9 @@ TEST(AnnotateOptionsTest, DefaultsRoundTripThroughYaml) {
   EXPECT_EQ(FormatAnnotateOptions(*read), text);
   EXPECT_EQ(read->tracker.frame.rounds, 3);
   EXPECT_EQ(read->tracker.frame.cost.form, RegionResidualForm::kIrls);
+  EXPECT_EQ(read->tracker.frame.energy, RegionEnergy::kCombined);
+  EXPECT_EQ(read->tracker.frame.lines.num_lines, 150);
+  EXPECT_EQ(read->tracker.frame.lines.weight, 0.5);
   EXPECT_EQ(read->views.cameras[1], "no");  // a string, not the YAML 1.1 boolean
   EXPECT_EQ(FormatAnnotateOptions(AnnotateOptions()),
             FormatAnnotateOptions(*ParseText(FormatAnnotateOptions(AnnotateOptions()))));
@@ -75,15 +81,23 @@ TEST(AnnotateOptionsTest, WrongTypesAndEnumsAreErrors) {
   const StatusOr<AnnotateOptions> form = ParseText("cost:\n  form: squared\n");
   ASSERT_EQ(form.status().code(), StatusCode::kInvalidConfig);
   EXPECT_THAT(form.status().message(), HasSubstr("'squared' is not one of sqrt_energy | irls"));
+  EXPECT_THAT(ParseText("cost:\n  energy: sparser\n").status().message(),
+              HasSubstr("'sparser' is not one of dense | sparse | combined"));
+  EXPECT_THAT(ParseText("lines:\n  num_lines: 10\n  slope_px: 0\n").status().message(),
+              HasSubstr("run.yaml:3: lines.slope_px = 0"));
+  EXPECT_THAT(ParseText("cost:\n  energy: sparse\nlines:\n  weight: 0\n").status().message(),
+              HasSubstr("lines.weight = 0, must be > 0 when the sparse energy is used"));
   EXPECT_THAT(ParseText("views:\n  cameras: [a, b]\n  weights: [1]\n").status().message(),
               HasSubstr("weights has 1 entries for 2 cameras"));
 }
 
 TEST(AnnotateOptionsTest, OverridesAreValidatedTheSameWay) {
-  const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(
-      test::SourcePath("configs/annotate.yaml"), {"frame.rounds=2", "color.kind=local"});
+  const StatusOr<AnnotateOptions> options =
+      ReadAnnotateOptions(test::SourcePath("configs/annotate.yaml"),
+                          {"frame.rounds=2", "color.kind=local", "cost.energy=sparse"});
   ASSERT_TRUE(options.ok()) << options.status().message();
   EXPECT_EQ(options->tracker.frame.rounds, 2);
+  EXPECT_EQ(options->tracker.frame.energy, RegionEnergy::kSparse);
   EXPECT_EQ(options->tracker.color.kind, ColorModelKind::kLocal);
   const StatusOr<AnnotateOptions> bad = ReadAnnotateOptions("", {"frame.rounds=-1"});
   ASSERT_EQ(bad.status().code(), StatusCode::kInvalidConfig);

@@ -5,7 +5,9 @@
 //
 //   for level l = levels−1 .. 1, then `rounds` times at level 0:
 //     every view: ray-cast the silhouette at the current pose (Embree), build its
-//                 RegionTemplate (band, posteriors), add its RegionCostFunction
+//                 RegionTemplate (band, posteriors) and add its RegionCostFunction (dense),
+//                 and/or build its CorrespondenceLines and add its
+//                 CorrespondenceLineCostFunction (sparse), as options.energy says
 //     Ceres: `iterations` Levenberg-Marquardt iterations on Σ_views w_v · Σ_x F(x)
 //     (level 0) stop early when the round moved the pose less than the round tolerances
 //
@@ -35,11 +37,18 @@
 #include "bcot/core/camera.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/color_model.h"
+#include "bcot/optim/correspondence_lines.h"
 #include "bcot/optim/region_cost.h"
 #include "bcot/optim/region_template.h"
 #include "bcot/render/ray_caster.h"
 
 namespace bcot {
+
+// Which region energy a frame problem minimises (DESIGN.md "Region energy" and "Sparse
+// variant"): the dense band energy of eq. 6, the correspondence-line energy, or their sum.
+enum class RegionEnergy { kDense, kSparse, kCombined };
+
+const char* RegionEnergyName(RegionEnergy energy);
 
 struct FrameProblemOptions {
   // Rounds at full resolution (each re-renders the templates at the current pose); >= 1.
@@ -68,6 +77,14 @@ struct FrameProblemOptions {
   // Residual form, Heaviside slope (at level 0) and probability floor. Its view_weight is
   // ignored: each FrameView carries its own weight.
   RegionCostOptions cost;
+  // The energy: dense (eq. 6 over the band), sparse (correspondence lines) or combined (the
+  // sum; lines.weight scales the sparse part). YAML: cost.energy. Combined by default: on the
+  // 90° binocular synthetic protocol and the real BCOT Cat frames it was never the worst of
+  // the three and lost the fewest synthetic frames (see scripts/bench_precision.sh).
+  RegionEnergy energy = RegionEnergy::kCombined;
+  // Correspondence lines of the sparse energy at level 0; coarse levels multiply its lengths
+  // by 2^l like the dense band.
+  CorrespondenceLineOptions lines;
   // Threads Ceres may use to evaluate residuals; >= 1.
   int num_threads = 1;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
@@ -94,6 +111,7 @@ const char* FrameTerminationName(FrameTermination termination);
 
 struct FrameViewSummary {
   int pixels = 0;       // band pixels of the view at level 0 in the last round
+  int lines = 0;        // correspondence lines of the view at level 0 in the last round
   double energy = 0.0;  // w·Σ F of the view at the final pose (level 0 template of the last round)
 };
 

@@ -6,7 +6,11 @@
 //   region:  RegionTemplateOptions    band_px, stride_px, contour_sample_spacing_px,
 //                                     contour_precision_px, contour_coarse_step_px
 //   cost:    RegionCostOptions        form (sqrt_energy | irls), heaviside_slope,
-//                                     probability_floor
+//                                     probability_floor; and energy (dense | sparse |
+//                                     combined) = FrameProblemOptions::energy
+//   lines:   CorrespondenceLineOptions num_lines, scale_px, half_length_px, min_side_px,
+//                                     slope_px, amplitude, hypothesis_subdivisions,
+//                                     min_sigma_px, max_sigma_px, weight
 //   color:   ColorModelOptions        kind (global | local), bins_per_channel,
 //                                     learning_rate_foreground, learning_rate_background,
 //                                     background_band_px, sample_margin_px,

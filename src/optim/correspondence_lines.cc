@@ -1,0 +1,252 @@
+#include "bcot/optim/correspondence_lines.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "violations.h"
+
+namespace bcot {
+namespace {
+
+// Walk step (px) when measuring how far a line may extend along the rendered mask.
+constexpr double kWalkStepPx = 0.5;
+// A mask flip closer than this to the walk position may be the pixel rounding of the line's own
+// contour (a pixel centre is up to 0.71 px from the point it is looked up for); the walk starts
+// here and ends this far before a flip.
+constexpr double kMaskMarginPx = 1.0;
+
+struct PendingLine {
+  CorrespondenceLine line;
+  int first_sample = 0;  // k of the first sample: offset k·h
+  int num_samples = 0;
+  int first_query = 0;  // index into the bilinear query list
+};
+
+// Extent (px, >= 0) from `centre` along `direction` over which the mask keeps the value
+// `inside`, the bilinear footprint stays in the image, capped at `limit`.
+double Extent(const cv::Mat1b& mask, const Camera& camera, const Eigen::Vector2d& centre,
+              const Eigen::Vector2d& direction, bool inside, double limit) {
+  double reached = 0.0;
+  for (double t = kMaskMarginPx; t <= limit + kMaskMarginPx; t += kWalkStepPx) {
+    const Eigen::Vector2d p = centre + t * direction;
+    if (!(p.x() >= 0.0 && p.y() >= 0.0 && p.x() < camera.width - 1.0 &&
+          p.y() < camera.height - 1.0)) {
+      return std::min(limit, t - kWalkStepPx);
+    }
+    const int x = static_cast<int>(std::lround(p.x()));
+    const int y = static_cast<int>(std::lround(p.y()));
+    if ((mask(y, x) != 0) != inside) return std::min(limit, std::max(0.0, t - kMaskMarginPx));
+    reached = t;
+  }
+  return std::min(limit, reached);
+}
+
+}  // namespace
+
+Status CorrespondenceLineOptions::Validate() const {
+  std::vector<std::string> violations;
+  if (num_lines < 1) violations.push_back(fmt::format("num_lines = {}, must be >= 1", num_lines));
+  if (!(scale_px > 0.0) || !std::isfinite(scale_px)) {
+    violations.push_back(fmt::format("scale_px = {}, must be finite and > 0", scale_px));
+  }
+  if (!(half_length_px > scale_px) || !std::isfinite(half_length_px)) {
+    violations.push_back(
+        fmt::format("half_length_px = {}, must be finite and > scale_px", half_length_px));
+  }
+  if (!(min_side_px >= 0.0) || !std::isfinite(min_side_px)) {
+    violations.push_back(fmt::format("min_side_px = {}, must be finite and >= 0", min_side_px));
+  }
+  if (!(slope_px > 0.0) || !std::isfinite(slope_px)) {
+    violations.push_back(fmt::format("slope_px = {}, must be finite and > 0", slope_px));
+  }
+  if (!(amplitude > 0.0 && amplitude < 0.5)) {
+    violations.push_back(fmt::format("amplitude = {}, must be in (0, 0.5)", amplitude));
+  }
+  if (hypothesis_subdivisions < 1) {
+    violations.push_back(
+        fmt::format("hypothesis_subdivisions = {}, must be >= 1", hypothesis_subdivisions));
+  }
+  if (!(min_sigma_px > 0.0) || !std::isfinite(min_sigma_px)) {
+    violations.push_back(fmt::format("min_sigma_px = {}, must be finite and > 0", min_sigma_px));
+  }
+  if (!(max_sigma_px > min_sigma_px) || !std::isfinite(max_sigma_px)) {
+    violations.push_back(
+        fmt::format("max_sigma_px = {}, must be finite and > min_sigma_px", max_sigma_px));
+  }
+  if (!(weight >= 0.0) || !std::isfinite(weight)) {
+    violations.push_back(fmt::format("weight = {}, must be finite and >= 0", weight));
+  }
+  return internal::JoinViolations("correspondence_lines", violations);
+}
+
+bool ContourDistribution(const std::vector<double>& p_foreground, double first_offset_px,
+                         const CorrespondenceLineOptions& options, double* mean_px,
+                         double* sigma_px) {
+  const int n = static_cast<int>(p_foreground.size());
+  if (n < 3) return false;
+  const double h = options.scale_px;
+  const double step = h / options.hypothesis_subdivisions;
+  // Hypotheses from the second to the second-last sample: a boundary at the very end of the
+  // line would have a single sample on one side.
+  const int num_hypotheses = (n - 3) * options.hypothesis_subdivisions + 1;
+  const double first_hypothesis = first_offset_px + h;
+  std::vector<double> log_likelihood(num_hypotheses, 0.0);
+  const double inverse_width = 1.0 / (2.0 * options.slope_px);
+  // s_k − d_j = (k·S − S − j)·step with S = subdivisions: tabulate h_f over that integer.
+  const int subdivisions = options.hypothesis_subdivisions;
+  const int lowest = -subdivisions - (num_hypotheses - 1);
+  std::vector<double> smoothed_step((n - 1) * subdivisions - lowest + 1);
+  for (size_t i = 0; i < smoothed_step.size(); ++i) {
+    const double offset = (static_cast<int>(i) + lowest) * step;
+    smoothed_step[i] = 0.5 - options.amplitude * std::tanh(offset * inverse_width);
+  }
+  for (int j = 0; j < num_hypotheses; ++j) {
+    double sum = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const double step_foreground = smoothed_step[k * subdivisions - subdivisions - j - lowest];
+      const double pf = p_foreground[k];
+      sum += std::log(step_foreground * pf + (1.0 - step_foreground) * (1.0 - pf));
+    }
+    log_likelihood[j] = sum;
+  }
+  const auto best = std::max_element(log_likelihood.begin(), log_likelihood.end());
+  const int mode = static_cast<int>(best - log_likelihood.begin());
+  const double max_log = *best;
+  double total = 0.0;
+  double first_moment = 0.0;
+  for (int j = 0; j < num_hypotheses; ++j) {
+    const double p = std::exp(log_likelihood[j] - max_log);
+    total += p;
+    first_moment += p * (first_hypothesis + j * step);
+  }
+  const double mean = first_moment / total;
+  double variance = 0.0;
+  for (int j = 0; j < num_hypotheses; ++j) {
+    const double p = std::exp(log_likelihood[j] - max_log);
+    const double deviation = first_hypothesis + j * step - mean;
+    variance += p * deviation * deviation;
+  }
+  *mean_px = mean;
+  *sigma_px = std::sqrt(variance / total);
+  return num_hypotheses >= 3 && mode != 0 && mode != num_hypotheses - 1;
+}
+
+StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
+    const RayCaster& caster, const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
+    const Eigen::Isometry3d& rig_from_objcentre, const cv::Mat3b& image,
+    const ColorModel& color_model, const Silhouette& silhouette,
+    const CorrespondenceLineOptions& options) {
+  BCOT_RETURN_IF_ERROR(options.Validate());
+  BCOT_RETURN_IF_ERROR(camera.Validate());
+  if (image.cols != camera.width || image.rows != camera.height) {
+    return Status::InvalidInput(fmt::format("camera '{}': image is {}x{}, camera expects {}x{}",
+                                            camera.name, image.cols, image.rows, camera.width,
+                                            camera.height));
+  }
+  if (silhouette.mask.size() != image.size()) {
+    return Status::InvalidInput(fmt::format("camera '{}': silhouette mask is {}x{}, image {}x{}",
+                                            camera.name, silhouette.mask.cols, silhouette.mask.rows,
+                                            image.cols, image.rows));
+  }
+  CorrespondenceLines result;
+  result.rig_from_objcentre = rig_from_objcentre;
+  const std::vector<ContourPoint>& contour = silhouette.contour;
+  if (contour.empty()) return result;
+
+  const Eigen::Isometry3d objcentre_from_template = caster.mesh().objcentre_from_template();
+  const Eigen::Isometry3d cam_from_objcentre = cam_from_rig * rig_from_objcentre;
+  const double h = options.scale_px;
+  // Sub-points per sample segment (bilinear posteriors averaged over the segment).
+  const int sub_points = std::max(1, static_cast<int>(std::lround(h)));
+  const int count = static_cast<int>(contour.size());
+  const int num_candidates = std::min(options.num_lines, count);
+  std::vector<PendingLine> pending;
+  std::vector<Eigen::Vector2i> queries;
+  std::vector<Eigen::Vector2d> query_points;  // the sub-points, 4 queries each
+  for (int j = 0; j < num_candidates; ++j) {
+    // Contour samples are evenly spaced along every contour: evenly spaced indices are evenly
+    // spaced in arc length.
+    const ContourPoint& point =
+        contour[static_cast<size_t>((j + 0.5) * count / num_candidates)];
+    ++result.candidates;
+    if (!camera.InImage(point.pixel)) {
+      ++result.rejected_off_image;
+      continue;
+    }
+    const double inside_px = Extent(silhouette.mask, camera, point.pixel, -point.normal,
+                                    /*inside=*/true, options.half_length_px);
+    const double outside_px = Extent(silhouette.mask, camera, point.pixel, point.normal,
+                                     /*inside=*/false, options.half_length_px);
+    if (inside_px < options.min_side_px || outside_px < options.min_side_px) {
+      ++result.rejected_short;
+      continue;
+    }
+    PendingLine p;
+    p.line.centre = point.pixel;
+    p.line.normal = point.normal;
+    p.line.point_in_objcentre = objcentre_from_template * point.point_in_object;
+    const Eigen::Vector3d point_in_cam = cam_from_objcentre * p.line.point_in_objcentre;
+    if (!(point_in_cam.z() > 0.0)) {
+      ++result.rejected_off_image;
+      continue;
+    }
+    p.line.projection0 = camera.Project(point_in_cam);
+    p.first_sample = -static_cast<int>(std::floor((inside_px - 0.5 * h) / h));
+    const int last_sample = static_cast<int>(std::floor((outside_px - 0.5 * h) / h));
+    p.num_samples = last_sample - p.first_sample + 1;
+    if (p.num_samples < 3) {
+      ++result.rejected_short;
+      continue;
+    }
+    p.first_query = static_cast<int>(query_points.size());
+    for (int k = p.first_sample; k <= last_sample; ++k) {
+      for (int m = 0; m < sub_points; ++m) {
+        const double s = k * h - 0.5 * h + (m + 0.5) * h / sub_points;
+        const Eigen::Vector2d q = point.pixel + s * point.normal;
+        query_points.push_back(q);
+        const int x0 = static_cast<int>(std::floor(q.x()));
+        const int y0 = static_cast<int>(std::floor(q.y()));
+        queries.emplace_back(x0, y0);
+        queries.emplace_back(x0 + 1, y0);
+        queries.emplace_back(x0, y0 + 1);
+        queries.emplace_back(x0 + 1, y0 + 1);
+      }
+    }
+    pending.push_back(std::move(p));
+  }
+  if (pending.empty()) return result;
+  const std::vector<double> posteriors = color_model.ForegroundPosteriors(image, queries);
+
+  std::vector<double> samples;
+  for (const PendingLine& p : pending) {
+    samples.assign(p.num_samples, 0.0);
+    for (int k = 0; k < p.num_samples; ++k) {
+      double sum = 0.0;
+      for (int m = 0; m < sub_points; ++m) {
+        const int index = p.first_query + k * sub_points + m;
+        const Eigen::Vector2d& q = query_points[index];
+        const double fx = q.x() - std::floor(q.x());
+        const double fy = q.y() - std::floor(q.y());
+        const double* v = &posteriors[4 * static_cast<size_t>(index)];
+        sum += (1.0 - fy) * ((1.0 - fx) * v[0] + fx * v[1]) + fy * ((1.0 - fx) * v[2] + fx * v[3]);
+      }
+      samples[k] = sum / sub_points;
+    }
+    CorrespondenceLine line = p.line;
+    double sigma = 0.0;
+    if (!ContourDistribution(samples, p.first_sample * h, options, &line.mean_px, &sigma) ||
+        sigma > options.max_sigma_px) {
+      ++result.rejected_ambiguous;
+      continue;
+    }
+    line.sigma_px = std::max(sigma, options.min_sigma_px);
+    result.lines.push_back(line);
+  }
+  return result;
+}
+
+}  // namespace bcot
