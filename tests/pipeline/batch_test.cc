@@ -79,6 +79,7 @@ class BatchRunTest : public ::testing::Test {
 
   // A private copy of the corpus, with `broken/` (an init pose line of 11 numbers).
   static std::string CopyCorpus(const test::TempDir& into, bool with_broken) {
+    fs::create_directories(into.File("root"));
     fs::copy(dir_->File("lab"), into.File("root/lab"), fs::copy_options::recursive);
     if (with_broken) {
       fs::copy(dir_->File("lab/s1"), into.File("root/broken"), fs::copy_options::recursive);
@@ -138,8 +139,10 @@ TEST_F(BatchRunTest, FailureIsRecordedAndOthersFinishThenRerunSkipsOrRedoes) {
   EXPECT_EQ(RunBatch(root, out, changed)->sequences[2].outcome, BatchOutcome::kSkipped);
 
   // Changed input: redone.
-  test::WriteText(root + "/lab/s2/init_pose.txt",
-                  *ReadTextFile(root + "/lab/s2/init_pose.txt") + "\n");
+  std::string init_pose = *ReadTextFile(root + "/lab/s2/init_pose.txt");
+  ASSERT_NE(init_pose.find('\t'), std::string::npos);
+  init_pose[init_pose.find('\t')] = ' ';  // same pose, different bytes
+  test::WriteText(root + "/lab/s2/init_pose.txt", init_pose);
   const StatusOr<BatchResult> fourth = RunBatch(root, out, changed);
   EXPECT_EQ(fourth->sequences[1].outcome, BatchOutcome::kSkipped);
   EXPECT_EQ(fourth->sequences[2].outcome, BatchOutcome::kAnnotated);

@@ -41,7 +41,7 @@ class BatchCommandTest : public ::testing::Test {
               test::SourcePath("configs/synth/demo.yaml") + " --out " +
               dir_->File(fmt::format("root/group{}/seq{}", i % 2, i)) +
               " --set cameras.width=160 --set cameras.height=128 --set distractors.count=0" +
-              fmt::format(" --set motion.num_frames={} --set motion.seed={}", kFrames, i + 1) +
+              fmt::format(" --set motion.num_frames={} --set seed={}", kFrames, i + 1) +
               " --set render.object_samples_per_axis=2",
           &output);
       BCOT_CHECK(code == 0);
