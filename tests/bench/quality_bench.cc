@@ -64,11 +64,30 @@ double Pearson(const std::vector<double>& x, const std::vector<double>& y) {
 
 struct Rows {
   std::vector<double> measured_p90, true_p90, measured_median, true_median;
+  void Append(const Rows& other) {
+    measured_p90.insert(measured_p90.end(), other.measured_p90.begin(), other.measured_p90.end());
+    true_p90.insert(true_p90.end(), other.true_p90.begin(), other.true_p90.end());
+    measured_median.insert(measured_median.end(), other.measured_median.begin(),
+                           other.measured_median.end());
+    true_median.insert(true_median.end(), other.true_median.begin(), other.true_median.end());
+  }
 };
+
+void PrintCorrelation(const std::string& label, const Rows& rows) {
+  if (rows.true_p90.size() < 3) return;
+  double mean_abs_difference = 0.0;
+  for (size_t i = 0; i < rows.true_p90.size(); ++i) {
+    mean_abs_difference += std::abs(rows.measured_p90[i] - rows.true_p90[i]) / rows.true_p90.size();
+  }
+  std::printf("%-10s rows %zu  pearson(p90) %.3f  pearson(median) %.3f  mean |meas-true| p90 %.3f px\n",
+              label.c_str(), rows.true_p90.size(), Pearson(rows.measured_p90, rows.true_p90),
+              Pearson(rows.measured_median, rows.true_median), mean_abs_difference);
+}
 
 int Run(const std::string& sequence_dir, const std::string& label,
         const std::vector<Eigen::Isometry3d>& rig_from_object, const QualityOptions& options,
         Rows* rows) {
+  Rows mine;
   const StatusOr<Sequence> sequence = LoadSequence(sequence_dir, false);
   const StatusOr<std::vector<Eigen::Isometry3d>> gt =
       ReadPoseFile(sequence_dir + "/gt/rig_from_object.txt");
@@ -106,14 +125,16 @@ int Run(const std::string& sequence_dir, const std::string& label,
                   camera.camera.name.c_str(), q.p90_px, true_p90, q.median_px, true_median,
                   q.found, q.points);
       if (std::isfinite(q.p90_px) && std::isfinite(true_p90)) {
-        rows->measured_p90.push_back(q.p90_px);
-        rows->true_p90.push_back(true_p90);
-        rows->measured_median.push_back(q.median_px);
-        rows->true_median.push_back(true_median);
+        mine.measured_p90.push_back(q.p90_px);
+        mine.true_p90.push_back(true_p90);
+        mine.measured_median.push_back(q.median_px);
+        mine.true_median.push_back(true_median);
       }
     }
   }
   std::printf("%-10s verdict: %s\n", label.c_str(), report->accepted ? "accepted" : "rejected");
+  PrintCorrelation(label, mine);
+  rows->Append(mine);
   return 0;
 }
 
@@ -173,10 +194,6 @@ int main(int argc, char** argv) {
     }
     if (Run(sequence_dir, "perturbed", poses, options->quality, &rows) != 0) return 1;
   }
-  if (rows.true_p90.size() >= 3) {
-    std::printf("rows %zu  pearson(p90) %.3f  pearson(median) %.3f\n", rows.true_p90.size(),
-                Pearson(rows.measured_p90, rows.true_p90),
-                Pearson(rows.measured_median, rows.true_median));
-  }
+  PrintCorrelation("all", rows);
   return 0;
 }
