@@ -130,8 +130,14 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
     posterior(static_cast<int>(i) / roi.width, static_cast<int>(i) % roi.width) =
         static_cast<float>(posteriors[i]);
   }
+  std::vector<cv::Mat1f> colour;
+  if (options.edge_weight > 0) {
+    cv::Mat colour_roi;
+    image(roi).convertTo(colour_roi, CV_32FC3, 1.0 / 255.0);
+    cv::split(colour_roi, colour);
+  }
   const std::vector<double> offsets =
-      BoundaryOffsets(silhouette.contour, posterior, roi, options);
+      BoundaryOffsets(silhouette.contour, posterior, roi, options, colour);
   for (double offset : offsets) quality.found += std::isfinite(offset) ? 1 : 0;
   quality.median_px = AbsPercentile(offsets, 0.5);
   quality.p90_px = AbsPercentile(offsets, 0.9);
@@ -289,8 +295,10 @@ Status QualityOptions::Validate() const {
           allowed_bad_fraction, "must be in [0, 1]");
   require(search_radius_px > 0, "search_radius_px", search_radius_px, "must be > 0");
   require(step_window_px > 0, "step_window_px", step_window_px, "must be > 0");
-  require(min_contrast > 0 && min_contrast < 1, "min_contrast", min_contrast,
-          "must be in (0, 1)");
+  require(edge_weight >= 0 && edge_weight <= 10, "edge_weight", edge_weight,
+          "must be in [0, 10]");
+  require(min_contrast > 0 && min_contrast < 1 + edge_weight, "min_contrast", min_contrast,
+          "must be in (0, 1 + edge_weight)");
   require(min_found_fraction >= 0 && min_found_fraction <= 1, "min_found_fraction",
           min_found_fraction, "must be in [0, 1]");
   require(sample_spacing_px > 0, "sample_spacing_px", sample_spacing_px, "must be > 0");
@@ -325,6 +333,7 @@ Status ParseQualityOptions(const YAML::Node& node, const std::string& source_nam
   BCOT_RETURN_IF_ERROR(map.GetOptional("allowed_bad_fraction", &o.allowed_bad_fraction));
   BCOT_RETURN_IF_ERROR(map.GetOptional("search_radius_px", &o.search_radius_px));
   BCOT_RETURN_IF_ERROR(map.GetOptional("step_window_px", &o.step_window_px));
+  BCOT_RETURN_IF_ERROR(map.GetOptional("edge_weight", &o.edge_weight));
   BCOT_RETURN_IF_ERROR(map.GetOptional("min_contrast", &o.min_contrast));
   BCOT_RETURN_IF_ERROR(map.GetOptional("min_found_fraction", &o.min_found_fraction));
   BCOT_RETURN_IF_ERROR(map.GetOptional("sample_spacing_px", &o.sample_spacing_px));
@@ -358,6 +367,7 @@ std::string FormatQualityOptions(const QualityOptions& o) {
   line("allowed_bad_fraction", fmt::format("{}", o.allowed_bad_fraction));
   line("search_radius_px", fmt::format("{}", o.search_radius_px));
   line("step_window_px", fmt::format("{}", o.step_window_px));
+  line("edge_weight", fmt::format("{}", o.edge_weight));
   line("min_contrast", fmt::format("{}", o.min_contrast));
   line("min_found_fraction", fmt::format("{}", o.min_found_fraction));
   line("sample_spacing_px", fmt::format("{}", o.sample_spacing_px));
@@ -369,34 +379,50 @@ std::string FormatQualityOptions(const QualityOptions& o) {
 
 std::vector<double> BoundaryOffsets(const std::vector<ContourPoint>& contour,
                                     const cv::Mat1f& posterior, const cv::Rect& roi,
-                                    const QualityOptions& options) {
+                                    const QualityOptions& options,
+                                    const std::vector<cv::Mat1f>& colour) {
   std::vector<double> offsets(contour.size(), kNaN);
   if (posterior.empty()) return offsets;
+  const bool use_edges = options.edge_weight > 0 && !colour.empty();
   const int window = std::max(1, static_cast<int>(std::lround(options.step_window_px / kProfileStepPx)));
   const int radius = static_cast<int>(std::ceil(options.search_radius_px / kProfileStepPx));
   const int half = radius + window;
-  std::vector<double> cumulative(2 * half + 2);
-  std::vector<double> step(2 * radius + 1);
+  // cumulative[c][k] = sum over the profile samples j < k at t_j = (j − half)·step of channel
+  // c (0 = P_f, then the colour channels).
+  const size_t channels = 1 + (use_edges ? colour.size() : 0);
+  std::vector<std::vector<double>> cumulative(channels, std::vector<double>(2 * half + 2));
+  std::vector<double> score(2 * radius + 1);
   for (size_t i = 0; i < contour.size(); ++i) {
     const ContourPoint& point = contour[i];
-    // cumulative[k] = sum of the profile samples at t_j = (j − half)·step for j < k.
-    cumulative[0] = 0.0;
-    for (int j = 0; j <= 2 * half; ++j) {
-      const double t = (j - half) * kProfileStepPx;
-      cumulative[j + 1] = cumulative[j] + SamplePosterior(posterior, roi, point.pixel + t * point.normal);
+    for (size_t c = 0; c < channels; ++c) {
+      const cv::Mat1f& channel = c == 0 ? posterior : colour[c - 1];
+      cumulative[c][0] = 0.0;
+      for (int j = 0; j <= 2 * half; ++j) {
+        const double t = (j - half) * kProfileStepPx;
+        cumulative[c][j + 1] =
+            cumulative[c][j] + SamplePosterior(channel, roi, point.pixel + t * point.normal);
+      }
     }
     int best = -1;
     for (int k = 0; k <= 2 * radius; ++k) {
       const int j = k + window;  // profile index of t_k = (k − radius)·step
-      const double inside = (cumulative[j + 1] - cumulative[j + 1 - window]) / window;
-      const double outside = (cumulative[j + 1 + window] - cumulative[j + 1]) / window;
-      step[k] = inside - outside;
-      if (best < 0 || step[k] > step[best]) best = k;
+      auto step = [&](size_t c) {
+        const double inside = (cumulative[c][j + 1] - cumulative[c][j + 1 - window]) / window;
+        const double outside = (cumulative[c][j + 1 + window] - cumulative[c][j + 1]) / window;
+        return inside - outside;
+      };
+      score[k] = step(0);
+      if (use_edges) {
+        double edge = 0.0;
+        for (size_t c = 1; c < channels; ++c) edge += step(c) * step(c);
+        score[k] += options.edge_weight * std::sqrt(edge / (channels - 1));
+      }
+      if (best < 0 || score[k] > score[best]) best = k;
     }
-    if (step[best] < options.min_contrast) continue;
+    if (score[best] < options.min_contrast) continue;
     double refine = 0.0;
     if (best > 0 && best < 2 * radius) {
-      const double a = step[best - 1], b = step[best], c = step[best + 1];
+      const double a = score[best - 1], b = score[best], c = score[best + 1];
       const double denominator = a - 2 * b + c;
       if (denominator < 0) refine = std::clamp(0.5 * (a - c) / denominator, -0.5, 0.5);
     }

@@ -80,6 +80,23 @@ TEST(QualityReportTest, NoBoundaryWithinTheRadiusGivesNoSample) {
   for (double offset : flat) EXPECT_FALSE(std::isfinite(offset));
 }
 
+TEST(QualityReportTest, ImageEdgesLocateTheBoundaryWherePosteriorsAreAmbiguous) {
+  const Eigen::Vector2d centre(60.2, 59.6);
+  const cv::Mat1f ambiguous(120, 120, 0.5f);
+  const cv::Mat1f disk = DiskPosterior(cv::Size(120, 120), centre, 30.0);  // as a colour
+  const std::vector<cv::Mat1f> colour = {disk, disk, 1.0f - disk};
+  QualityOptions options;
+  options.edge_weight = 1.0;
+  const std::vector<double> offsets = BoundaryOffsets(Circle(centre, 31.5, 32), ambiguous,
+                                                      cv::Rect(0, 0, 120, 120), options, colour);
+  for (double offset : offsets) EXPECT_NEAR(offset, -1.5, 0.15);
+  options.edge_weight = 0.0;  // posteriors only: nothing to find
+  for (double offset : BoundaryOffsets(Circle(centre, 31.5, 32), ambiguous,
+                                       cv::Rect(0, 0, 120, 120), options, colour)) {
+    EXPECT_FALSE(std::isfinite(offset));
+  }
+}
+
 TEST(QualityReportTest, AbsPercentileIgnoresNaN) {
   const double nan = std::nan("");
   EXPECT_DOUBLE_EQ(AbsPercentile({-1, 2, nan, 3, -4, 5}, 0.5), 3.0);

@@ -14,6 +14,8 @@
 //      D(t) = mean P_f on [t − w, t] − mean P_f on [t, t + w] (w = step_window_px), refined to
 //      sub-pixel by a parabola through the maximum and its neighbours. A normal whose best D is
 //      below min_contrast (no visible boundary: occlusion, camouflage) gives no sample.
+//      With edge_weight > 0 the score adds the image's RGB step over the same windows, which
+//      helps where object and background colours overlap (P_f ambiguous).
 //   4. The offset |t*| is the point's reprojection error in px. The frame-view reports the
 //      median and the 90th percentile over its points.
 // A frame-view is *bad* when its `statistic` (p90 by default) exceeds threshold_px, or when
@@ -55,7 +57,12 @@ struct QualityOptions {
   double search_radius_px = 6.0;
   // Half-width of the step detector on the P_f profile (px); > 0.
   double step_window_px = 2.0;
-  // Minimum P_f step (in [0, 1]) for a boundary to count as found; in (0, 1).
+  // Weight of the image edge in the boundary score: score(t) = D(t) + edge_weight · E(t), E the
+  // RGB step (|mean colour inside − outside| / √3, colours in [0, 1]) over the same windows.
+  // 0 = colour posteriors only (default: on bench_quality.sh data, clutter and distractor
+  // edges near the contour made ground-truth poses fail at 1); in [0, 10].
+  double edge_weight = 0.0;
+  // Minimum score for a boundary to count as found; in (0, 1 + edge_weight).
   double min_contrast = 0.3;
   // Below this fraction of contour points with a boundary, the frame-view is bad; in [0, 1].
   double min_found_fraction = 0.5;
@@ -83,11 +90,14 @@ Status ParseQualityOptions(const YAML::Node& node, const std::string& source_nam
 std::string FormatQualityOptions(const QualityOptions& options);
 
 // Boundary offsets of one contour against a P_f image. `posterior` is P_f on `roi` (image
-// coordinates of its top-left pixel centre = roi.tl()). Returns one entry per contour point:
-// the signed offset t* along the outward normal (px), or NaN when no boundary was found.
+// coordinates of its top-left pixel centre = roi.tl()); `colour` (optional, used when
+// options.edge_weight > 0) the image channels on the same roi, in [0, 1]. Returns one entry
+// per contour point: the signed offset t* along the outward normal (px), or NaN when no
+// boundary was found.
 std::vector<double> BoundaryOffsets(const std::vector<ContourPoint>& contour,
                                     const cv::Mat1f& posterior, const cv::Rect& roi,
-                                    const QualityOptions& options);
+                                    const QualityOptions& options,
+                                    const std::vector<cv::Mat1f>& colour = {});
 
 // Median and 90th percentile of |values| ignoring NaN; NaN when none is finite.
 double AbsPercentile(const std::vector<double>& values, double fraction);
