@@ -26,5 +26,5 @@ for name in demo glossy_fast; do
   "$dir/bcot" annotate --quiet "$seq" --out "$work/$name.annotation" --config configs/annotate.yaml
   echo "== $name: measured (report) vs true (ground truth) contour error, px"
   "$dir/tests/bench/quality_bench" --sequence "$seq" --config configs/annotate.yaml \
-    --poses "$work/$name.annotation/rig_from_object.txt" --perturbed --seed 1
+    --poses "$work/$name.annotation/rig_from_object.txt" --perturbed --seed 1 --offset-px 3
 done

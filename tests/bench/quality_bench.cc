@@ -13,7 +13,9 @@
 // view and the Pearson correlation of measured vs true (p90 and median) over all rows.
 //
 // Usage: quality_bench --sequence DIR [--poses FILE] [--perturbed] [--max-deg 1.5]
-//          [--max-mm 4] [--seed 1] [--config FILE]
+//          [--max-mm 4] [--seed 1] [--offset-px 3] [--config FILE]
+// --offset-px: also ground truth as is and shifted so the object moves that far in cam0's image
+// (the accept / reject check).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -147,12 +149,15 @@ int main(int argc, char** argv) {
   bool perturbed = false;
   double max_deg = 1.5, max_mm = 4.0;
   int seed = 1;
+  double offset_px = 0.0;
   app.add_option("--sequence", sequence_dir, "Synthetic sequence (with gt/)")->required();
   app.add_option("--poses", poses_path, "Annotated rig_from_object.txt");
   app.add_flag("--perturbed", perturbed, "Also: ground truth perturbed per frame");
   app.add_option("--max-deg", max_deg, "Largest perturbation rotation (deg)");
   app.add_option("--max-mm", max_mm, "Largest perturbation translation (mm)");
   app.add_option("--seed", seed, "Perturbation seed");
+  app.add_option("--offset-px", offset_px,
+                 "Also: ground truth shifted so the object moves this far in cam0's image");
   app.add_option("--config", config_path, "Annotate config (its quality: section is used)");
   CLI11_PARSE(app, argc, argv);
   using namespace bcot;
@@ -193,6 +198,24 @@ int main(int argc, char** argv) {
                         Eigen::Isometry3d(delta.linear());
     }
     if (Run(sequence_dir, "perturbed", poses, options->quality, &rows) != 0) return 1;
+  }
+  if (offset_px > 0) {
+    const StatusOr<Sequence> sequence = LoadSequence(sequence_dir, false);
+    const StatusOr<std::vector<Eigen::Isometry3d>> gt =
+        ReadPoseFile(sequence_dir + "/gt/rig_from_object.txt");
+    if (!sequence.ok() || !gt.ok()) return 1;
+    const RigCamera& cam0 = sequence->rig[0];
+    for (const double shift : {0.0, offset_px}) {
+      std::vector<Eigen::Isometry3d> poses = *gt;
+      for (Eigen::Isometry3d& rig_from_object : poses) {
+        const double depth = (cam0.cam_from_rig * rig_from_object).translation().z();
+        rig_from_object.pretranslate(cam0.cam_from_rig.linear().transpose() *
+                                     Eigen::Vector3d(shift * depth / cam0.camera.fx, 0, 0));
+      }
+      if (Run(sequence_dir, fmt::format("gt+{}px", shift), poses, options->quality, &rows) != 0) {
+        return 1;
+      }
+    }
   }
   PrintCorrelation("all", rows);
   return 0;
