@@ -1,15 +1,23 @@
 #!/usr/bin/env bash
 # The main job on bundled demo data, from a fresh clone: install packages, build, synthesize a
 # binocular 90° sequence (one cluttered and one plain background) with ground truth, annotate
-# it with the annotation setting (configs/annotate.yaml).
-# Output: out/demo/sequence (the input contract of DESIGN.md, plus gt/) and out/demo/annotation
-# (the output contract).
+# it with `bcot batch` and the annotation setting (configs/annotate.yaml), and check each
+# annotation's reprojection error (quality report, accept / reject).
+# Output: out/demo/sequences/binocular (the input contract of DESIGN.md, plus gt/) and
+# out/demo/annotations (the output contract: poses, quality.json, report.html, DONE; plus
+# summary.json / summary.html over the batch). Rerunning skips finished sequences.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 scripts/build.sh release
 out=${1:-out/demo}
-rm -rf "$out/sequence"
-./build/bcot synth --config configs/synth/demo.yaml --out "$out/sequence"
-./build/bcot annotate "$out/sequence" --out "$out/annotation" --config configs/annotate.yaml
-echo "demo: synthetic sequence in $out/sequence, annotation in $out/annotation"
+if [ ! -f "$out/sequences/binocular/rig.yaml" ]; then
+  ./build/bcot synth --config configs/synth/demo.yaml --out "$out/sequences/binocular"
+fi
+status=0
+./build/bcot batch "$out/sequences" --out "$out/annotations" --config configs/annotate.yaml \
+  || status=$?
+./build/bcot report "$out/annotations" || status=$?
+echo "demo: sequences in $out/sequences, annotations in $out/annotations"
+echo "demo: summary: $(cd "$out/annotations" && pwd)/summary.html"
+exit $status

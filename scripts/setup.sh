@@ -11,6 +11,7 @@ packages=(
   libaravis-dev libusb-1.0-0-dev aravis-tools aravis-tools-cli
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libfmt-dev libspdlog-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  chromium   # headless renders of the HTML reports in the tests labelled `browser`
 )
 
 missing=()

@@ -8,6 +8,7 @@
 
 #include "bcot/pipeline/annotate_options.h"
 #include "bcot/pipeline/annotator.h"
+#include "bcot/pipeline/quality_report.h"
 #include "commands.h"
 
 namespace bcot::tools {
@@ -50,6 +51,12 @@ int RunAnnotate(const AnnotateFlags& flags) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr, "bcot annotate: wrote %s in %.1f s\n", flags.out_dir.c_str(), seconds);
+  const StatusOr<QualityVerdict> verdict = ReadQualityVerdict(flags.out_dir);
+  if (verdict.ok()) {
+    std::fprintf(stderr, "bcot annotate: quality %s (worst %.2f px); see %s/report.html\n",
+                 verdict->accepted ? "accepted" : "rejected", verdict->worst_px,
+                 flags.out_dir.c_str());
+  }
   return 0;
 }
 

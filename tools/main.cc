@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
   bcot::tools::AddCalibrateCommand(app, &exit_code);
   bcot::tools::AddCaptureCommand(app, &exit_code);
   bcot::tools::AddAnnotateCommand(app, &exit_code);
+  bcot::tools::AddBatchCommand(app, &exit_code);
+  bcot::tools::AddReportCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

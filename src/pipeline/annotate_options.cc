@@ -33,6 +33,8 @@ Status AnnotateOptions::Validate() const {
       }
     }
   }
+  const Status quality_status = quality.Validate();
+  if (!quality_status.ok()) violations.push_back(quality_status.message());
   if (violations.empty()) return Status::Ok();
   std::string message = violations[0];
   for (size_t i = 1; i < violations.size(); ++i) message += "; " + violations[i];
@@ -236,6 +238,9 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
         own.views = o->views;
         return own.Validate();
       }));
+  if (root.Has("quality")) {
+    BCOT_RETURN_IF_ERROR(ParseQualityOptions(root.Node("quality"), source_name, &o->quality));
+  }
   return root.CheckNoUnknownKeys();
 }
 
@@ -337,7 +342,7 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
   section("views");
   line("cameras", List(o.views.cameras, Quote));
   line("weights", List(o.views.weights, number));
-  return y;
+  return y + FormatQualityOptions(o.quality);
 }
 
 }  // namespace bcot

@@ -13,6 +13,7 @@
 #include "bcot/core/file_util.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/optim/multi_view_tracker.h"
+#include "bcot/pipeline/quality_report.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
 
@@ -101,6 +102,12 @@ std::string FramesCsv(const SequenceAnnotation& annotation) {
 
 }  // namespace
 
+std::string AnnotateConfigHash(const AnnotateOptions& options) {
+  Fnv1a hash;
+  hash.Add(FormatAnnotateOptions(options));
+  return hash.Hex();
+}
+
 StatusOr<std::string> SequenceInputHash(const Sequence& sequence) {
   Fnv1a hash;
   const std::string dir = sequence.dir;
@@ -188,8 +195,6 @@ Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,
   }
   BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/frames.csv", FramesCsv(annotation)));
   const std::string config = FormatAnnotateOptions(options);
-  Fnv1a config_hash;
-  config_hash.Add(config);
   const std::string header = fmt::format(
       "# bcot annotate: fully resolved options\n# bcot_version: {}\n# sequence: {}\n"
       "# input_hash: {}\n",
@@ -197,13 +202,16 @@ Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,
   BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/config.resolved.yaml", header + config));
   return WriteFileAtomic(out_dir + "/DONE",
                          fmt::format("config_hash: {}\ninput_hash: {}\nframes: {}\nfailed_frames: {}\n",
-                                     config_hash.Hex(), input_hash, annotation.frames.size(),
+                                     AnnotateConfigHash(options), input_hash, annotation.frames.size(),
                                      annotation.failed_frames));
 }
 
 Status AnnotateSequenceDir(const std::string& sequence_dir, const std::string& out_dir,
                            const AnnotateOptions& options, const AnnotateProgress& progress) {
-  StatusOr<Sequence> sequence = LoadSequence(sequence_dir, /*require_init_pose=*/true);
+  // An absolute path, so config.resolved.yaml lets `bcot report` find the images again.
+  StatusOr<Sequence> sequence =
+      LoadSequence(std::filesystem::absolute(sequence_dir).lexically_normal().string(),
+                   /*require_init_pose=*/true);
   if (!sequence.ok()) return sequence.status();
   StatusOr<std::string> input_hash = SequenceInputHash(*sequence);
   if (!input_hash.ok()) return input_hash.status();
@@ -213,6 +221,9 @@ Status AnnotateSequenceDir(const std::string& sequence_dir, const std::string& o
   if (error) return Status::IoError(out_dir + "/DONE: cannot remove: " + error.message());
   StatusOr<SequenceAnnotation> annotation = AnnotateSequence(*sequence, options, progress);
   if (!annotation.ok()) return annotation.status();
+  StatusOr<QualityReport> quality = WriteQualityReport(
+      out_dir, *sequence, annotation->rig_from_object, annotation->view_names, options.quality);
+  if (!quality.ok()) return quality.status();
   return WriteAnnotation(out_dir, *sequence, options, *input_hash, *annotation);
 }
 

@@ -18,6 +18,8 @@
 //                                     local_anchor_fraction
 //   tracker: MultiViewTrackerOptions  bootstrap_passes
 //   views:   ViewSelection            cameras (names; empty = all), weights (one per camera)
+//   quality: QualityOptions           threshold_px, statistic, allowed_bad_fraction, ...
+//                                     (pipeline/quality_report.h)
 //
 // Unknown keys, wrong types and out-of-range values are kInvalidConfig errors naming
 // file:line: section.key. configs/annotate.yaml is the annotation setting (5 rounds × 7
@@ -32,6 +34,7 @@
 
 #include "bcot/core/status.h"
 #include "bcot/optim/multi_view_tracker.h"
+#include "bcot/pipeline/quality_report.h"
 
 namespace bcot {
 
@@ -45,6 +48,7 @@ struct ViewSelection {
 struct AnnotateOptions {
   MultiViewTrackerOptions tracker;
   ViewSelection views;
+  QualityOptions quality;
   // Lists every violation in one kInvalidConfig status.
   Status Validate() const;
 };

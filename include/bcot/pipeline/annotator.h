@@ -7,7 +7,9 @@
 //   rig_from_object.txt     one pose line per frame (O_t, mm)
 //   <camera>/pose.txt       cam_from_object per frame, for every rig camera (also unused ones)
 //   frames.csv              per frame: termination, rounds, iterations, energy per view, ms
-//   config.resolved.yaml    every option used, the tool version and the input hash
+//   quality.json, quality.csv, report.html   the reprojection-error check (quality_report.h)
+//   config.resolved.yaml    every option used, the tool version, the sequence's absolute path
+//                           and the input hash
 //   DONE                    last; holds the config and input hashes. Removed first when a run
 //                           starts, so a directory with DONE is always complete and consistent.
 // A frame whose solve fails (object out of every view, solver failure) keeps the previous
@@ -51,6 +53,9 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
 // A hash (16 hex digits) of everything a sequence's annotation depends on: rig.yaml,
 // object.yaml, the mesh file, init_pose.txt and every image file's name and size.
 StatusOr<std::string> SequenceInputHash(const Sequence& sequence);
+
+// The config hash DONE records: a hash (16 hex digits) of FormatAnnotateOptions(options).
+std::string AnnotateConfigHash(const AnnotateOptions& options);
 
 // Writes the annotation directory (see the header comment).
 Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,

@@ -1,0 +1,222 @@
+// Honesty check of the quality report (issue 4), run by scripts/bench_quality.sh; not a test.
+//
+// For a synthetic sequence with ground truth (`bcot synth` writes gt/rig_from_object.txt),
+// every frame and view gets two numbers:
+//   measured  the report's reprojection error (MeasureQuality: contour of the pose vs the
+//             boundary found in the image along the normals), p90 and median, px;
+//   true      the same statistics of the true projected contour error: for each contour
+//             sample of the pose, the distance (px) to the ground-truth pose's contour
+//             (RayCaster, dense samples, point-to-polyline), no image involved.
+// Poses: the annotation (--poses FILE, e.g. out/.../rig_from_object.txt) and/or ground truth
+// perturbed per frame by a seeded random rigid motion whose size is uniform in
+// [0, --max-deg] and [0, --max-mm] (so errors span 0 to a few px). Prints one row per frame and
+// view and the Pearson correlation of measured vs true (p90 and median) over all rows.
+//
+// Usage: quality_bench --sequence DIR [--poses FILE] [--perturbed] [--max-deg 1.5]
+//          [--max-mm 4] [--seed 1] [--offset-px 3] [--config FILE]
+// --offset-px: also ground truth as is and shifted so the object moves that far in cam0's image
+// (the accept / reject check).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "bcot/core/pose_io.h"
+#include "bcot/core/se3.h"
+#include "bcot/core/sequence.h"
+#include "bcot/pipeline/annotate_options.h"
+#include "bcot/pipeline/quality_report.h"
+#include "bcot/render/mesh.h"
+#include "bcot/render/ray_caster.h"
+
+namespace bcot {
+namespace {
+
+double DistanceToPolyline(const Eigen::Vector2d& p, const std::vector<ContourPoint>& contour) {
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < contour.size(); ++i) {
+    const ContourPoint& a = contour[i];
+    best = std::min(best, (p - a.pixel).norm());
+    const size_t j = i + 1;
+    if (j < contour.size() && contour[j].contour_id == a.contour_id) {
+      const Eigen::Vector2d ab = contour[j].pixel - a.pixel;
+      const double s = std::clamp((p - a.pixel).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
+      best = std::min(best, (p - a.pixel - s * ab).norm());
+    }
+  }
+  return best;
+}
+
+double Pearson(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = static_cast<double>(x.size());
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < x.size(); ++i) mx += x[i] / n, my += y[i] / n;
+  double sxy = 0, sxx = 0, syy = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    sxy += (x[i] - mx) * (y[i] - my);
+    sxx += (x[i] - mx) * (x[i] - mx);
+    syy += (y[i] - my) * (y[i] - my);
+  }
+  return sxy / std::sqrt(sxx * syy);
+}
+
+struct Rows {
+  std::vector<double> measured_p90, true_p90, measured_median, true_median;
+  void Append(const Rows& other) {
+    measured_p90.insert(measured_p90.end(), other.measured_p90.begin(), other.measured_p90.end());
+    true_p90.insert(true_p90.end(), other.true_p90.begin(), other.true_p90.end());
+    measured_median.insert(measured_median.end(), other.measured_median.begin(),
+                           other.measured_median.end());
+    true_median.insert(true_median.end(), other.true_median.begin(), other.true_median.end());
+  }
+};
+
+void PrintCorrelation(const std::string& label, const Rows& rows) {
+  if (rows.true_p90.size() < 3) return;
+  double mean_abs_difference = 0.0;
+  for (size_t i = 0; i < rows.true_p90.size(); ++i) {
+    mean_abs_difference += std::abs(rows.measured_p90[i] - rows.true_p90[i]) / rows.true_p90.size();
+  }
+  std::printf("%-10s rows %zu  pearson(p90) %.3f  pearson(median) %.3f  mean |meas-true| p90 %.3f px\n",
+              label.c_str(), rows.true_p90.size(), Pearson(rows.measured_p90, rows.true_p90),
+              Pearson(rows.measured_median, rows.true_median), mean_abs_difference);
+}
+
+int Run(const std::string& sequence_dir, const std::string& label,
+        const std::vector<Eigen::Isometry3d>& rig_from_object, const QualityOptions& options,
+        Rows* rows) {
+  Rows mine;
+  const StatusOr<Sequence> sequence = LoadSequence(sequence_dir, false);
+  const StatusOr<std::vector<Eigen::Isometry3d>> gt =
+      ReadPoseFile(sequence_dir + "/gt/rig_from_object.txt");
+  if (!sequence.ok() || !gt.ok()) {
+    std::fprintf(stderr, "quality_bench: %s\n",
+                 (!sequence.ok() ? sequence.status() : gt.status()).message().c_str());
+    return 1;
+  }
+  const StatusOr<QualityReport> report = MeasureQuality(*sequence, rig_from_object, {}, options);
+  if (!report.ok()) {
+    std::fprintf(stderr, "quality_bench: %s\n", report.status().message().c_str());
+    return 1;
+  }
+  const StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
+  const RayCaster caster(*mesh);
+  ContourOptions dense;
+  dense.sample_spacing_px = 0.5;
+  ContourOptions sparse;
+  sparse.sample_spacing_px = options.sample_spacing_px;
+  for (int f = 0; f < sequence->num_frames; ++f) {
+    for (int v = 0; v < sequence->rig.size(); ++v) {
+      const RigCamera& camera = sequence->rig[v];
+      const std::vector<ContourPoint> truth =
+          caster.ExtractContour(camera.camera, camera.cam_from_rig * (*gt)[f], dense);
+      const std::vector<ContourPoint> posed =
+          caster.ExtractContour(camera.camera, camera.cam_from_rig * rig_from_object[f], sparse);
+      std::vector<double> distances;
+      for (const ContourPoint& point : posed) {
+        distances.push_back(DistanceToPolyline(point.pixel, truth));
+      }
+      const ViewFrameQuality& q = report->frames[f][v];
+      const double true_p90 = AbsPercentile(distances, 0.9);
+      const double true_median = AbsPercentile(distances, 0.5);
+      std::printf("%-10s %5d %-6s %10.3f %10.3f %10.3f %10.3f %7d/%d\n", label.c_str(), f,
+                  camera.camera.name.c_str(), q.p90_px, true_p90, q.median_px, true_median,
+                  q.found, q.points);
+      if (std::isfinite(q.p90_px) && std::isfinite(true_p90)) {
+        mine.measured_p90.push_back(q.p90_px);
+        mine.true_p90.push_back(true_p90);
+        mine.measured_median.push_back(q.median_px);
+        mine.true_median.push_back(true_median);
+      }
+    }
+  }
+  std::printf("%-10s verdict: %s\n", label.c_str(), report->accepted ? "accepted" : "rejected");
+  PrintCorrelation(label, mine);
+  rows->Append(mine);
+  return 0;
+}
+
+}  // namespace
+}  // namespace bcot
+
+int main(int argc, char** argv) {
+  CLI::App app{"Measured reprojection error vs true projected contour error"};
+  std::string sequence_dir, poses_path, config_path;
+  bool perturbed = false;
+  double max_deg = 1.5, max_mm = 4.0;
+  int seed = 1;
+  double offset_px = 0.0;
+  app.add_option("--sequence", sequence_dir, "Synthetic sequence (with gt/)")->required();
+  app.add_option("--poses", poses_path, "Annotated rig_from_object.txt");
+  app.add_flag("--perturbed", perturbed, "Also: ground truth perturbed per frame");
+  app.add_option("--max-deg", max_deg, "Largest perturbation rotation (deg)");
+  app.add_option("--max-mm", max_mm, "Largest perturbation translation (mm)");
+  app.add_option("--seed", seed, "Perturbation seed");
+  app.add_option("--offset-px", offset_px,
+                 "Also: ground truth shifted so the object moves this far in cam0's image");
+  app.add_option("--config", config_path, "Annotate config (its quality: section is used)");
+  CLI11_PARSE(app, argc, argv);
+  using namespace bcot;
+  const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, {});
+  if (!options.ok()) {
+    std::fprintf(stderr, "quality_bench: %s\n", options.status().message().c_str());
+    return 2;
+  }
+  std::printf("%-10s %5s %-6s %10s %10s %10s %10s %9s\n", "poses", "frame", "view",
+              "meas_p90", "true_p90", "meas_med", "true_med", "found");
+  Rows rows;
+  if (!poses_path.empty()) {
+    const StatusOr<std::vector<Eigen::Isometry3d>> poses = ReadPoseFile(poses_path);
+    if (!poses.ok()) {
+      std::fprintf(stderr, "quality_bench: %s\n", poses.status().message().c_str());
+      return 1;
+    }
+    if (Run(sequence_dir, "annotated", *poses, options->quality, &rows) != 0) return 1;
+  }
+  if (perturbed) {
+    const StatusOr<std::vector<Eigen::Isometry3d>> gt =
+        ReadPoseFile(sequence_dir + "/gt/rig_from_object.txt");
+    if (!gt.ok()) return 1;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    std::vector<Eigen::Isometry3d> poses = *gt;
+    for (Eigen::Isometry3d& rig_from_object : poses) {
+      const Eigen::Vector3d axis = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+      const Eigen::Vector3d direction =
+          Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+      const double size = unit(rng);
+      Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
+      delta.linear() = Eigen::AngleAxisd(size * max_deg * M_PI / 180.0, axis).toRotationMatrix();
+      delta.translation() = size * max_mm * direction;
+      // Rotate about the object's origin, translate in the rig frame.
+      rig_from_object = Eigen::Translation3d(delta.translation()) * rig_from_object *
+                        Eigen::Isometry3d(delta.linear());
+    }
+    if (Run(sequence_dir, "perturbed", poses, options->quality, &rows) != 0) return 1;
+  }
+  if (offset_px > 0) {
+    const StatusOr<Sequence> sequence = LoadSequence(sequence_dir, false);
+    const StatusOr<std::vector<Eigen::Isometry3d>> gt =
+        ReadPoseFile(sequence_dir + "/gt/rig_from_object.txt");
+    if (!sequence.ok() || !gt.ok()) return 1;
+    const RigCamera& cam0 = sequence->rig[0];
+    for (const double shift : {0.0, offset_px}) {
+      std::vector<Eigen::Isometry3d> poses = *gt;
+      for (Eigen::Isometry3d& rig_from_object : poses) {
+        const double depth = (cam0.cam_from_rig * rig_from_object).translation().z();
+        rig_from_object.pretranslate(cam0.cam_from_rig.linear().transpose() *
+                                     Eigen::Vector3d(shift * depth / cam0.camera.fx, 0, 0));
+      }
+      if (Run(sequence_dir, fmt::format("gt+{}px", shift), poses, options->quality, &rows) != 0) {
+        return 1;
+      }
+    }
+  }
+  PrintCorrelation("all", rows);
+  return 0;
+}

@@ -1,0 +1,108 @@
+// bcot batch <root> --out DIR [--config FILE] [--set section.key=value]... [--jobs N]
+//            [--shard k/N] [--force]
+// Annotates every sequence under <root> (see pipeline/batch.h) with a live progress line on
+// stderr; exit 0 when every sequence succeeded, 1 when any failed, 2 for usage/config errors.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "bcot/pipeline/annotate_options.h"
+#include "bcot/pipeline/batch.h"
+#include "commands.h"
+
+namespace bcot::tools {
+namespace {
+
+struct BatchFlags {
+  ConfigFlags config;
+  std::string root;
+  std::string out_dir;
+  int jobs = 0;
+  std::string shard = "0/1";
+  bool force = false;
+  bool quiet = false;
+};
+
+void PrintProgress(const BatchProgress& p) {
+  const double fps = p.frames_done / std::max(p.seconds, 1e-9);
+  const double eta = (p.frames_total - p.frames_done) / std::max(fps, 1e-9);
+  std::fprintf(stderr,
+               "\rbcot batch: %d/%d sequences (%d skipped, %d failed)  %ld/%ld frames  "
+               "%.2f frames/s  ETA %s   ",
+               p.sequences_done, p.sequences_total, p.sequences_skipped, p.sequences_failed,
+               p.frames_done, p.frames_total, fps,
+               p.frames_done > 0 ? (std::to_string(static_cast<long>(eta)) + " s").c_str() : "?");
+}
+
+int RunBatchCommand(const BatchFlags& flags) {
+  StatusOr<AnnotateOptions> annotate =
+      ReadAnnotateOptions(flags.config.config_path, flags.config.overrides);
+  if (!annotate.ok()) {
+    PrintError("batch", annotate.status().message());
+    return annotate.status().ExitCode();
+  }
+  BatchOptions options;
+  options.annotate = *annotate;
+  options.jobs = flags.jobs;
+  options.force = flags.force;
+  const Status shard = ParseShard(flags.shard, &options);
+  if (!shard.ok()) {
+    PrintError("batch", shard.message());
+    return shard.ExitCode();
+  }
+  double last_print = -1.0;
+  BatchProgressCallback progress;
+  if (!flags.quiet) {
+    progress = [&last_print](const BatchProgress& p) {
+      if (p.seconds - last_print < 0.5 && p.sequences_done < p.sequences_total) return;
+      last_print = p.seconds;
+      PrintProgress(p);
+    };
+  }
+  const StatusOr<BatchResult> result = RunBatch(flags.root, flags.out_dir, options, progress);
+  if (!flags.quiet) std::fprintf(stderr, "\n");
+  if (!result.ok()) {
+    PrintError("batch", result.status().message());
+    return result.status().ExitCode();
+  }
+  int annotated = 0, skipped = 0, accepted = 0, rejected = 0;
+  for (const BatchSequenceResult& s : result->sequences) {
+    annotated += s.outcome == BatchOutcome::kAnnotated;
+    skipped += s.outcome == BatchOutcome::kSkipped;
+    if (s.outcome == BatchOutcome::kFailed) {
+      std::fprintf(stderr, "bcot batch: %s failed: %s\n", s.relative_path.c_str(),
+                   s.error.c_str());
+    } else {
+      (s.accepted ? accepted : rejected) += 1;
+    }
+  }
+  std::fprintf(stderr,
+               "bcot batch: %d annotated, %d skipped, %d failed; %d accepted, %d rejected; "
+               "summary: %s/summary.html\n",
+               annotated, skipped, result->num_failed(), accepted, rejected,
+               flags.out_dir.c_str());
+  return result->all_succeeded() ? 0 : 1;
+}
+
+}  // namespace
+
+void AddBatchCommand(CLI::App& app, int* exit_code) {
+  auto flags = std::make_shared<BatchFlags>();
+  CLI::App* command = app.add_subcommand(
+      "batch", "Annotate every sequence (folder holding rig.yaml) under a directory tree");
+  command->add_option("root", flags->root, "Directory tree of sequences")->required();
+  AddConfigFlags(command, &flags->config);
+  command->add_option("--out", flags->out_dir, "Output root (mirrors the input tree)")
+      ->required();
+  command->add_option("--jobs", flags->jobs, "Sequences in parallel (0 = one per core)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--shard", flags->shard,
+                      "Process shard k of N (0 <= k < N), e.g. $SLURM_ARRAY_TASK_ID/N")
+      ->capture_default_str();
+  command->add_flag("--force", flags->force, "Redo sequences whose DONE matches");
+  command->add_flag("--quiet", flags->quiet, "No progress on stderr");
+  command->callback([flags, exit_code] { *exit_code = RunBatchCommand(*flags); });
+}
+
+}  // namespace bcot::tools
