@@ -80,6 +80,7 @@ LevelOptions OptionsAtLevel(const FrameProblemOptions& options, int level) {
 struct ViewTemplate {
   int view = 0;
   std::shared_ptr<const RegionTemplate> region_template;
+  RegionCostOptions cost;  // with the view's weight
   std::unique_ptr<RegionCostFunction> energy;  // w·Σ F over every pixel
 };
 
@@ -98,7 +99,8 @@ FrameProblem::FrameProblem(const RayCaster& caster, const FrameProblemOptions& o
 }
 
 FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
-                                 Eigen::Isometry3d* rig_from_objcentre) const {
+                                 Eigen::Isometry3d* rig_from_objcentre,
+                                 std::vector<ViewLinearisation>* linearisations) const {
   BCOT_CHECK(rig_from_objcentre != nullptr);
   for (const FrameView& view : views) {
     BCOT_CHECK(view.camera != nullptr && view.image != nullptr && view.color_model != nullptr);
@@ -111,7 +113,9 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
   PoseParameters x = ToPoseParameters(start);
   const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
 
+  if (linearisations != nullptr) linearisations->clear();
   auto fail = [&](FrameTermination termination, std::string message) {
+    if (linearisations != nullptr) linearisations->clear();
     summary.termination = termination;
     summary.message = std::move(message);
     *rig_from_objcentre = start;
@@ -155,6 +159,7 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
       RegionCostOptions cost_options = level_options.cost;
       cost_options.view_weight = view.weight;
       const int pixel_count = static_cast<int>(t.region_template->pixels.size());
+      t.cost = cost_options;
       t.energy = std::make_unique<RegionCostFunction>(*view.camera, view.cam_from_rig,
                                                       t.region_template, 0, pixel_count,
                                                       cost_options);
@@ -193,6 +198,13 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
       return fail(FrameTermination::kSolverFailure, where + ": the energy is not finite");
     }
     summary.rounds = step.round + 1;
+    if (linearisations != nullptr) {
+      linearisations->clear();
+      for (const ViewTemplate& t : templates) {
+        linearisations->push_back({*views[t.view].camera, views[t.view].cam_from_rig,
+                                   t.region_template, t.cost});
+      }
+    }
     const Eigen::Isometry3d round_end = FromPoseParameters(x.data());
     summary.last_round_rotation_deg =
         RotationDistanceDeg(linearisation_pose.linear(), round_end.linear());

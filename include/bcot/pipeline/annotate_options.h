@@ -14,6 +14,8 @@
 //                                     local_anchor_fraction
 //   tracker: MultiViewTrackerOptions  bootstrap_passes
 //   views:   ViewSelection            cameras (names; empty = all), weights (one per camera)
+//   window:  WindowProblemOptions     enabled, size, overlap, iterations, rotation_sigma_deg
+//                                     [x, y, z], translation_sigma_mm [x, y, z], num_threads
 //
 // Unknown keys, wrong types and out-of-range values are kInvalidConfig errors naming
 // file:line: section.key. configs/annotate.yaml is the annotation setting (5 rounds × 7
@@ -28,6 +30,7 @@
 
 #include "bcot/core/status.h"
 #include "bcot/optim/multi_view_tracker.h"
+#include "bcot/optim/window_problem.h"
 
 namespace bcot {
 
@@ -41,6 +44,8 @@ struct ViewSelection {
 struct AnnotateOptions {
   MultiViewTrackerOptions tracker;
   ViewSelection views;
+  // The temporal smoothing window after the per-frame solves (off unless enabled).
+  WindowProblemOptions window;
   // Lists every violation in one kInvalidConfig status.
   Status Validate() const;
 };
