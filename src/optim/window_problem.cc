@@ -1,5 +1,6 @@
 #include "bcot/optim/window_problem.h"
 
+#include <ceres/loss_function.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 #include <fmt/format.h>
@@ -58,6 +59,10 @@ Status WindowProblemOptions::Validate() const {
                                        translation_sigma_mm[k], axes[k]));
     }
   }
+  if (!(robust_scale >= 0.0) || !std::isfinite(robust_scale)) {
+    violations.push_back(
+        fmt::format("robust_scale = {}, must be finite and >= 0", robust_scale));
+  }
   if (num_threads < 1) {
     violations.push_back(fmt::format("num_threads = {}, must be >= 1", num_threads));
   }
@@ -109,7 +114,10 @@ WindowSummary WindowProblem::Solve(
   const Vector6d weights = options_.PriorWeights();
   for (int t = lo + 1; t + 1 < hi; ++t) {
     if (!free[t - 1 - lo] && !free[t - lo] && !free[t + 1 - lo]) continue;
-    problem.AddResidualBlock(new ConstantVelocityCost(weights), nullptr,
+    ceres::LossFunction* loss = options_.robust_scale > 0.0
+                                    ? new ceres::CauchyLoss(options_.robust_scale)
+                                    : nullptr;
+    problem.AddResidualBlock(new ConstantVelocityCost(weights), loss,
                              parameters[t - 1 - lo].data(), parameters[t - lo].data(),
                              parameters[t + 1 - lo].data());
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "bcot/core/se3.h"
@@ -72,8 +73,8 @@ TEST(WindowSmootherTest, WindowsCoverTheSequenceWithBoundedMemory) {
 // The per-frame poses come from MultiViewTracker (annotation setting) started at the truth.
 class WindowSequenceTest : public test::BunnyCasterTest {
  protected:
-  static constexpr int kFrames = 24;
-  static constexpr int kStep = 12;
+  static constexpr int kFrames = 18;
+  static constexpr int kStep = 9;
 
   static void SetUpTestSuite() {
     test::BunnyCasterTest::SetUpTestSuite();
@@ -126,11 +127,15 @@ class WindowSequenceTest : public test::BunnyCasterTest {
     return smoother.rig_from_objcentre();
   }
 
+  // Windows of 8 frames, 3 shared: three windows over the sequence, one across the step.
   static WindowProblemOptions SlidingOptions() {
     WindowProblemOptions options;
     options.enabled = true;
-    options.size = 10;
-    options.overlap = 4;
+    options.size = 8;
+    options.overlap = 3;
+    options.rotation_sigma_deg = {0.05, 0.05, 0.05};
+    options.translation_sigma_mm = {0.05, 0.05, 0.05};
+    options.robust_scale = 2.0;
     return options;
   }
 
@@ -139,25 +144,30 @@ class WindowSequenceTest : public test::BunnyCasterTest {
   static inline std::vector<std::vector<ViewLinearisation>>* templates_ = nullptr;
 };
 
-TEST_F(WindowSequenceTest, SlidingWindowReducesJitterWithoutRaisingTheError) {
+// On the two constant-velocity stretches (frames 0..kStep−1 and kStep..kFrames−1, each with
+// its own velocity) the window at least halves the jitter of the per-frame solves and does not
+// raise their mean error.
+TEST_F(WindowSequenceTest, SlidingWindowHalvesJitterWithoutRaisingTheError) {
   const std::vector<Eigen::Isometry3d> smoothed = Smooth(SlidingOptions());
   const Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // poses are rig_from_objcentre
-  const TrajectoryErrors before = CompareTrajectories(*per_frame_, *truth_, centre, 0, kFrames);
-  const TrajectoryErrors after = CompareTrajectories(smoothed, *truth_, centre, 0, kFrames);
-  std::printf("jitter per-frame %.4f deg %.4f mm -> window %.4f deg %.4f mm\n",
-              before.jitter_rotation_deg, before.jitter_translation_mm, after.jitter_rotation_deg,
-              after.jitter_translation_mm);
-  std::printf("mean error per-frame %.4f deg %.4f mm -> window %.4f deg %.4f mm\n",
-              before.rotation_deg, before.translation_mm.norm(), after.rotation_deg,
-              after.translation_mm.norm());
-  EXPECT_LT(after.jitter_rotation_deg, 0.5 * before.jitter_rotation_deg);
-  EXPECT_LT(after.jitter_translation_mm, 0.5 * before.jitter_translation_mm);
-  EXPECT_LE(after.rotation_deg, before.rotation_deg);
-  EXPECT_LE(after.translation_mm.norm(), before.translation_mm.norm());
+  for (const auto& [first, end] : {std::pair{0, kStep}, std::pair{kStep, kFrames}}) {
+    const TrajectoryErrors before = CompareTrajectories(*per_frame_, *truth_, centre, first, end);
+    const TrajectoryErrors after = CompareTrajectories(smoothed, *truth_, centre, first, end);
+    std::printf("frames [%d, %d): jitter per-frame %.4f deg %.4f mm -> window %.4f deg %.4f mm; "
+                "mean error %.4f deg %.4f mm -> %.4f deg %.4f mm\n",
+                first, end, before.jitter_rotation_deg, before.jitter_translation_mm,
+                after.jitter_rotation_deg, after.jitter_translation_mm, before.rotation_deg,
+                before.translation_mm.norm(), after.rotation_deg, after.translation_mm.norm());
+    EXPECT_LT(after.jitter_rotation_deg, 0.5 * before.jitter_rotation_deg) << first;
+    EXPECT_LT(after.jitter_translation_mm, 0.5 * before.jitter_translation_mm) << first;
+    EXPECT_LE(after.rotation_deg, before.rotation_deg) << first;
+    EXPECT_LE(after.translation_mm.norm(), before.translation_mm.norm()) << first;
+  }
 }
 
-// No lag: around the velocity step the window's error is not worse than the per-frame error by
-// more than 0.02° / 0.05 mm (a tenth of the per-frame jitter scale of this scene).
+// No lag: at the frames around the velocity step (kStep−2 .. kStep+1) the window's error is not
+// worse than the per-frame error by more than 0.02° / 0.02 mm (a fifth of the per-frame error
+// of this scene). A quadratic prior (robust_scale 0) lags here by 0.2° / 0.3 mm.
 TEST_F(WindowSequenceTest, VelocityStepDoesNotLag) {
   const std::vector<Eigen::Isometry3d> smoothed = Smooth(SlidingOptions());
   for (int t = kStep - 2; t <= kStep + 1; ++t) {
@@ -168,7 +178,7 @@ TEST_F(WindowSequenceTest, VelocityStepDoesNotLag) {
     std::printf("frame %d: per-frame %.4f deg %.4f mm, window %.4f deg %.4f mm\n", t, before_deg,
                 before_mm, after_deg, after_mm);
     EXPECT_LE(after_deg, before_deg + 0.02) << t;
-    EXPECT_LE(after_mm, before_mm + 0.05) << t;
+    EXPECT_LE(after_mm, before_mm + 0.02) << t;
   }
 }
 

@@ -7,6 +7,7 @@
 // SPARSE_NORMAL_CHOLESKY (SuiteSparse): the normal equations are block-tridiagonal (7×7 blocks).
 //
 // Energy of a window [s, e):  Σ_t Σ_views w_v·Σ_x F_t,x(T_t)  +  ½ Σ_t ‖W·(ξ_{t−1,t} − ξ_{t,t+1})‖²
+// (with robust_scale > 0 the prior term is ρ(‖·‖²) with a Cauchy loss, see the options).
 // The first term is each frame's own region energy, linearised where its solve ended (the
 // templates are not re-rendered: the window moves poses by a fraction of a pixel, well inside
 // the band). The prior is a Gaussian negative log-likelihood of the change of body velocity with
@@ -58,6 +59,11 @@ struct WindowProblemOptions {
   // Rotation in degrees, translation in mm; the prior weights are W = diag(1/σ) (rad, mm).
   std::array<double, 3> rotation_sigma_deg = {0.1, 0.1, 0.1};
   std::array<double, 3> translation_sigma_mm = {0.2, 0.2, 0.2};
+  // Robust prior: the whitened velocity change ‖W·(ξ₁ − ξ₂)‖ (in σ) beyond which a triple is
+  // treated as a real change of motion and its prior fades (Cauchy loss with this scale:
+  // ρ(s) = c²·log(1 + s/c²)), so a sudden motion change is followed, not smoothed away;
+  // >= 0, 0 = plain quadratic prior.
+  double robust_scale = 3.0;
   // Threads Ceres may use; >= 1.
   int num_threads = 1;
 
