@@ -56,7 +56,7 @@ for object in bunny:bunny.obj spool:spool.off pinion:pinion.off; do
       mkdir -p "$out/gt"
       for file in rig.yaml object.yaml init_pose.txt; do ln -s "../$file" "$out/$file"; done
       mesh_file=$(sed -n 's/^mesh: *//p' "$seq/object.yaml" | tr -d '"')
-      ln -s "../$mesh_file" "$out/$mesh_file"
+      ln -s "../${mesh_file%%/*}" "$out/${mesh_file%%/*}"
       cameras=$(sed -n 's/^ *- *name: *//p; s/^ *name: *//p' "$seq/rig.yaml" | tr -d '"')
       selected=()
       for ((j = 0; j < frames; j++)); do

@@ -229,6 +229,7 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
           }
           std::copy(values.begin(), values.end(), axes->begin());
         }
+        BCOT_RETURN_IF_ERROR(m.GetOptional("robust_scale", &window.robust_scale));
         return m.GetOptional("num_threads", &window.num_threads);
       },
       [&] { return window.Validate(); }));
@@ -327,6 +328,7 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
                                                       w.rotation_sigma_deg.end()), number));
   line("translation_sigma_mm", List(std::vector<double>(w.translation_sigma_mm.begin(),
                                                         w.translation_sigma_mm.end()), number));
+  line("robust_scale", number(w.robust_scale));
   line("num_threads", number(w.num_threads));
   return y;
 }

@@ -15,7 +15,8 @@
 //   tracker: MultiViewTrackerOptions  bootstrap_passes
 //   views:   ViewSelection            cameras (names; empty = all), weights (one per camera)
 //   window:  WindowProblemOptions     enabled, size, overlap, iterations, rotation_sigma_deg
-//                                     [x, y, z], translation_sigma_mm [x, y, z], num_threads
+//                                     [x, y, z], translation_sigma_mm [x, y, z], robust_scale,
+//                                     num_threads
 //
 // Unknown keys, wrong types and out-of-range values are kInvalidConfig errors naming
 // file:line: section.key. configs/annotate.yaml is the annotation setting (5 rounds × 7
