@@ -117,7 +117,7 @@ WindowSummary WindowProblem::Solve(
     ceres::LossFunction* loss = options_.robust_scale > 0.0
                                     ? new ceres::CauchyLoss(options_.robust_scale)
                                     : nullptr;
-    problem.AddResidualBlock(new ConstantVelocityCost(weights), loss,
+    problem.AddResidualBlock(new ConstantVelocityCost(weights, options_.prior), loss,
                              parameters[t - 1 - lo].data(), parameters[t - lo].data(),
                              parameters[t + 1 - lo].data());
   }

@@ -219,6 +219,9 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
         BCOT_RETURN_IF_ERROR(m.GetOptional("size", &window.size));
         BCOT_RETURN_IF_ERROR(m.GetOptional("overlap", &window.overlap));
         BCOT_RETURN_IF_ERROR(m.GetOptional("iterations", &window.iterations));
+        int prior = static_cast<int>(window.prior);
+        BCOT_RETURN_IF_ERROR(GetEnum(m, "prior", {"se3", "decoupled"}, &prior));
+        window.prior = static_cast<MotionPriorForm>(prior);
         for (auto [key, axes] : {std::pair{"rotation_sigma_deg", &window.rotation_sigma_deg},
                                  std::pair{"translation_sigma_mm", &window.translation_sigma_mm}}) {
           if (!m.Has(key)) continue;
@@ -324,6 +327,7 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
   line("size", number(w.size));
   line("overlap", number(w.overlap));
   line("iterations", number(w.iterations));
+  line("prior", w.prior == MotionPriorForm::kSe3 ? "se3" : "decoupled");
   line("rotation_sigma_deg", List(std::vector<double>(w.rotation_sigma_deg.begin(),
                                                       w.rotation_sigma_deg.end()), number));
   line("translation_sigma_mm", List(std::vector<double>(w.translation_sigma_mm.begin(),

@@ -69,8 +69,10 @@ std::vector<Triple> Triples() {
 
 // ceres::GradientChecker through the Se3Manifold of all three blocks: numeric differentiation
 // along X ⊕ δ against the analytic SE(3) Jacobians of the header.
-TEST(ConstantVelocityCostTest, GradientCheckerAcceptsEveryBlock) {
-  const ConstantVelocityCost cost(TestWeights());
+class ConstantVelocityCostFormTest : public ::testing::TestWithParam<MotionPriorForm> {};
+
+TEST_P(ConstantVelocityCostFormTest, GradientCheckerAcceptsEveryBlock) {
+  const ConstantVelocityCost cost(TestWeights(), GetParam());
   Se3Manifold manifold;
   std::vector<const ceres::Manifold*> manifolds = {&manifold, &manifold, &manifold};
   ceres::NumericDiffOptions numeric_options;
@@ -92,6 +94,44 @@ TEST(ConstantVelocityCostTest, GradientCheckerAcceptsEveryBlock) {
         << results.error_log.substr(0, 4000);
     std::printf("[ %s ] max relative Jacobian error %.2e\n", triple.name.c_str(),
                 results.maximum_relative_error);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Forms, ConstantVelocityCostFormTest,
+                         ::testing::Values(MotionPriorForm::kSe3, MotionPriorForm::kDecoupled));
+
+// kDecoupled is zero when the centre moves on a straight line at constant speed in the rig
+// while the object spins at constant body angular velocity, and equals W times the change of
+// both velocities otherwise.
+TEST(ConstantVelocityCostTest, DecoupledIsZeroOnStraightCentreAndConstantSpin) {
+  const ConstantVelocityCost cost(TestWeights(), MotionPriorForm::kDecoupled);
+  std::mt19937 rng(37);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Eigen::Vector3d omega = 0.1 * RandomUnit(rng);
+    const Eigen::Vector3d velocity = 5.0 * RandomUnit(rng);
+    const Eigen::Isometry3d a = Pose(2.5 * RandomUnit(rng), 400.0 * RandomUnit(rng));
+    const Eigen::Isometry3d b = Pose(LogSO3(Eigen::Matrix3d(a.linear() * ExpSO3(omega))),
+                                     a.translation() + velocity);
+    Eigen::Isometry3d c = Pose(LogSO3(Eigen::Matrix3d(b.linear() * ExpSO3(omega))),
+                               b.translation() + velocity);
+    PoseParameters pa = ToPoseParameters(a), pb = ToPoseParameters(b), pc = ToPoseParameters(c);
+    const double* parameters[] = {pa.data(), pb.data(), pc.data()};
+    Vector6d residual;
+    ASSERT_TRUE(cost.Evaluate(parameters, residual.data(), nullptr));
+    EXPECT_LT(residual.cwiseAbs().maxCoeff(), 1e-9) << trial;
+    // The SE(3) form is not zero on this motion (the straight path bends in the body frame).
+    EXPECT_GT(VelocityChange(a, b, c, MotionPriorForm::kSe3).head<3>().norm(), 1e-3) << trial;
+
+    const Eigen::Vector3d kick_mm(0.5, -0.2, 0.1);
+    const Eigen::Vector3d kick_rad(0.002, 0.0, -0.001);
+    c = Pose(LogSO3(Eigen::Matrix3d(b.linear() * ExpSO3(omega + kick_rad))),
+             b.translation() + velocity + kick_mm);
+    pc = ToPoseParameters(c);
+    ASSERT_TRUE(cost.Evaluate(parameters, residual.data(), nullptr));
+    Vector6d expected;
+    expected << -kick_mm, -kick_rad;
+    expected = TestWeights().cwiseProduct(expected);
+    EXPECT_LT((residual - expected).cwiseAbs().maxCoeff(), 1e-7) << trial;
   }
 }
 

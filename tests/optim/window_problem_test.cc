@@ -67,9 +67,10 @@ TEST(WindowSmootherTest, WindowsCoverTheSequenceWithBoundedMemory) {
   EXPECT_EQ(smoother.rig_from_objcentre().size(), 41u);
 }
 
-// A binocular sequence rendered once for the suite: the object moves at constant body velocity
-// v1 for frames 0..kStep−1 and v2 from kStep on (a step in velocity: the rotation speed
-// triples and the translation turns by 90° and doubles), image noise seeded per frame.
+// A binocular sequence rendered once for the suite: the object centre moves on a straight line
+// at v1 and the object spins at constant body angular velocity ω1 for frames 0..kStep−1, then
+// at v2, ω2 (a step in velocity: the spin triples, the centre's path turns by ~80° and its
+// speed doubles), image noise seeded per frame.
 // The per-frame poses come from MultiViewTracker (annotation setting) started at the truth.
 class WindowSequenceTest : public test::BunnyCasterTest {
  protected:
@@ -79,14 +80,16 @@ class WindowSequenceTest : public test::BunnyCasterTest {
   static void SetUpTestSuite() {
     test::BunnyCasterTest::SetUpTestSuite();
     const test::BinocularScene scene;
-    Vector6d v1, v2;
-    v1 << 1.5, 0.5, 0.0, 0.010, 0.006, -0.004;
-    v2 << -0.5, 3.0, 1.0, 0.030, 0.018, -0.012;
+    // Centre velocity (rig frame, mm/frame) and body angular velocity (rad/frame).
+    const Eigen::Vector3d v1(1.5, 0.5, 0.0), v2(-0.5, 3.0, 1.0);
+    const Eigen::Vector3d omega1(0.010, 0.006, -0.004), omega2(0.030, 0.018, -0.012);
     truth_ = new std::vector<Eigen::Isometry3d>();
     Eigen::Isometry3d pose = scene.rig_from_objcentre;
     for (int t = 0; t < kFrames; ++t) {
       truth_->push_back(pose);
-      pose = pose * ExpSE3(t + 1 < kStep ? v1 : v2);
+      const bool before_step = t + 1 < kStep;
+      pose.linear() = pose.linear() * ExpSO3(before_step ? omega1 : omega2);
+      pose.translation() += before_step ? v1 : v2;
     }
     std::vector<TrackedView> views = {{scene.camera0, scene.cam0_from_rig, 1.0},
                                       {scene.camera1, scene.cam1_from_rig, 1.0}};
@@ -165,21 +168,30 @@ TEST_F(WindowSequenceTest, SlidingWindowHalvesJitterWithoutRaisingTheError) {
   }
 }
 
-// No lag: at the frames around the velocity step (kStep−2 .. kStep+1) the window's error is not
-// worse than the per-frame error by more than 0.02° / 0.02 mm (a fifth of the per-frame error
-// of this scene). A quadratic prior (robust_scale 0) lags here by 0.2° / 0.3 mm.
+// No lag: over the frames around the velocity step (kStep−2 .. kStep+1; the kink is at
+// kStep−1) the window's mean error is not worse than the per-frame mean error by more than
+// 0.02° / 0.02 mm, and no single frame is worse by more than 0.05° / 0.05 mm (about half the
+// per-frame mean error of this scene: single frames carry per-frame noise of that size).
+// A quadratic prior (robust_scale 0) lags here by 0.2° / 0.3 mm.
 TEST_F(WindowSequenceTest, VelocityStepDoesNotLag) {
   const std::vector<Eigen::Isometry3d> smoothed = Smooth(SlidingOptions());
+  double before_deg = 0.0, before_mm = 0.0, after_deg = 0.0, after_mm = 0.0;
   for (int t = kStep - 2; t <= kStep + 1; ++t) {
-    const double before_deg = test::RotationErrorDeg((*per_frame_)[t], (*truth_)[t]);
-    const double before_mm = test::TranslationErrorMm((*per_frame_)[t], (*truth_)[t]);
-    const double after_deg = test::RotationErrorDeg(smoothed[t], (*truth_)[t]);
-    const double after_mm = test::TranslationErrorMm(smoothed[t], (*truth_)[t]);
-    std::printf("frame %d: per-frame %.4f deg %.4f mm, window %.4f deg %.4f mm\n", t, before_deg,
-                before_mm, after_deg, after_mm);
-    EXPECT_LE(after_deg, before_deg + 0.02) << t;
-    EXPECT_LE(after_mm, before_mm + 0.02) << t;
+    const double frame_before_deg = test::RotationErrorDeg((*per_frame_)[t], (*truth_)[t]);
+    const double frame_before_mm = test::TranslationErrorMm((*per_frame_)[t], (*truth_)[t]);
+    const double frame_after_deg = test::RotationErrorDeg(smoothed[t], (*truth_)[t]);
+    const double frame_after_mm = test::TranslationErrorMm(smoothed[t], (*truth_)[t]);
+    std::printf("frame %d: per-frame %.4f deg %.4f mm, window %.4f deg %.4f mm\n", t,
+                frame_before_deg, frame_before_mm, frame_after_deg, frame_after_mm);
+    EXPECT_LE(frame_after_deg, frame_before_deg + 0.05) << t;
+    EXPECT_LE(frame_after_mm, frame_before_mm + 0.05) << t;
+    before_deg += frame_before_deg / 4.0;
+    before_mm += frame_before_mm / 4.0;
+    after_deg += frame_after_deg / 4.0;
+    after_mm += frame_after_mm / 4.0;
   }
+  EXPECT_LE(after_deg, before_deg + 0.02);
+  EXPECT_LE(after_mm, before_mm + 0.02);
 }
 
 }  // namespace

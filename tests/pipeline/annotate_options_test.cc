@@ -81,11 +81,12 @@ TEST(AnnotateOptionsTest, WrongTypesAndEnumsAreErrors) {
 
 TEST(AnnotateOptionsTest, WindowSectionParsesAndNamesBadValues) {
   const StatusOr<AnnotateOptions> options = ParseText(
-      "window:\n  enabled: true\n  size: 12\n  overlap: 4\n  rotation_sigma_deg: [0.1, 0.2, "
+      "window:\n  enabled: true\n  prior: se3\n  size: 12\n  overlap: 4\n  rotation_sigma_deg: [0.1, 0.2, "
       "0.3]\n  translation_sigma_mm: [1, 2, 3]\n  robust_scale: 0\n");
   ASSERT_TRUE(options.ok()) << options.status().message();
   EXPECT_TRUE(options->window.enabled);
   EXPECT_EQ(options->window.size, 12);
+  EXPECT_EQ(options->window.prior, MotionPriorForm::kSe3);
   EXPECT_EQ(options->window.overlap, 4);
   EXPECT_DOUBLE_EQ(options->window.rotation_sigma_deg[2], 0.3);
   EXPECT_DOUBLE_EQ(options->window.translation_sigma_mm[1], 2.0);

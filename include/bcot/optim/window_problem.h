@@ -42,28 +42,35 @@
 #include "bcot/core/se3.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/frame_problem.h"
+#include "bcot/optim/motion_prior_cost.h"
 
 namespace bcot {
 
 struct WindowProblemOptions {
-  // Refine the per-frame poses with the window (annotation); false = per-frame poses as solved.
-  bool enabled = false;
+  // Refine the per-frame poses with the window (annotation: on, configs/annotate.yaml;
+  // tracking: off, configs/track.yaml); false = per-frame poses as solved.
+  bool enabled = true;
   // Frames per window W: 0 = the whole sequence in one window, else >= 3.
   int size = 30;
   // Frames shared by consecutive windows; in [0, size − 1] (ignored when size = 0).
   int overlap = 10;
   // Ceres Levenberg-Marquardt iterations per window; >= 1.
   int iterations = 10;
-  // Standard deviations of the constant-velocity prior: the change of body velocity per frame
-  // expected between consecutive frame steps, per object-centred axis (x, y, z); each > 0.
-  // Rotation in degrees, translation in mm; the prior weights are W = diag(1/σ) (rad, mm).
-  std::array<double, 3> rotation_sigma_deg = {0.1, 0.1, 0.1};
-  std::array<double, 3> translation_sigma_mm = {0.2, 0.2, 0.2};
+  // Form of the constant-velocity prior (motion_prior_cost.h): kDecoupled = centre velocity in
+  // the rig frame and body angular velocity; kSe3 = body twist on SE(3).
+  MotionPriorForm prior = MotionPriorForm::kDecoupled;
+  // Standard deviations of the prior: the change of velocity per frame expected between
+  // consecutive frame steps, per axis (x, y, z: rig axes for the translation of kDecoupled,
+  // object axes otherwise); each > 0. Rotation in degrees, translation in mm; the prior
+  // weights are W = diag(1/σ) (rad, mm).
+  // Defaults measured by scripts/bench_window.sh (handheld-like synth, binocular 640×512).
+  std::array<double, 3> rotation_sigma_deg = {0.05, 0.05, 0.05};
+  std::array<double, 3> translation_sigma_mm = {0.05, 0.05, 0.05};
   // Robust prior: the whitened velocity change ‖W·(ξ₁ − ξ₂)‖ (in σ) beyond which a triple is
   // treated as a real change of motion and its prior fades (Cauchy loss with this scale:
   // ρ(s) = c²·log(1 + s/c²)), so a sudden motion change is followed, not smoothed away;
   // >= 0, 0 = plain quadratic prior.
-  double robust_scale = 3.0;
+  double robust_scale = 2.0;
   // Threads Ceres may use; >= 1.
   int num_threads = 1;
 

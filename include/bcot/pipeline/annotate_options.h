@@ -14,7 +14,8 @@
 //                                     local_anchor_fraction
 //   tracker: MultiViewTrackerOptions  bootstrap_passes
 //   views:   ViewSelection            cameras (names; empty = all), weights (one per camera)
-//   window:  WindowProblemOptions     enabled, size, overlap, iterations, rotation_sigma_deg
+//   window:  WindowProblemOptions     enabled, size, overlap, iterations, prior (decoupled |
+//                                     se3), rotation_sigma_deg
 //                                     [x, y, z], translation_sigma_mm [x, y, z], robust_scale,
 //                                     num_threads
 //
