@@ -65,7 +65,7 @@ struct WindowProblemOptions {
   // weights are W = diag(1/σ) (rad, mm).
   // Defaults measured by scripts/bench_window.sh (handheld-like synth, binocular 640×512).
   std::array<double, 3> rotation_sigma_deg = {0.05, 0.05, 0.05};
-  std::array<double, 3> translation_sigma_mm = {0.05, 0.05, 0.05};
+  std::array<double, 3> translation_sigma_mm = {0.1, 0.1, 0.1};
   // Robust prior: the whitened velocity change ‖W·(ξ₁ − ξ₂)‖ (in σ) beyond which a triple is
   // treated as a real change of motion and its prior fades (Cauchy loss with this scale:
   // ρ(s) = c²·log(1 + s/c²)), so a sudden motion change is followed, not smoothed away;
