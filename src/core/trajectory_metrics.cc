@@ -38,8 +38,8 @@ TrajectoryErrors CompareTrajectories(const std::vector<Eigen::Isometry3d>& rig_f
   errors.translation_mm /= errors.frames;
   int count = 0;
   for (int t = first + 1; t + 1 < end; ++t) {
-    const Vector6d e = Acceleration(rig_from_object, point_in_object, t) -
-                       Acceleration(truth, point_in_object, t);
+    const Vector6d e =
+        Acceleration(rig_from_object, point_in_object, t) - Acceleration(truth, point_in_object, t);
     errors.jitter_rotation_deg += e.head<3>().norm() * kDegPerRad;
     errors.jitter_translation_mm += e.tail<3>().norm();
     ++count;

@@ -39,8 +39,8 @@ Status WindowProblemOptions::Validate() const {
     violations.push_back(fmt::format("size = {}, must be 0 (whole sequence) or >= 3", size));
   }
   if (size != 0 && (overlap < 0 || overlap > size - 1)) {
-    violations.push_back(fmt::format("overlap = {}, must be in [0, size − 1 = {}]", overlap,
-                                     std::max(size - 1, 0)));
+    violations.push_back(
+        fmt::format("overlap = {}, must be in [0, size − 1 = {}]", overlap, std::max(size - 1, 0)));
   }
   if (size == 0 && overlap < 0) {
     violations.push_back(fmt::format("overlap = {}, must be >= 0", overlap));
@@ -60,8 +60,7 @@ Status WindowProblemOptions::Validate() const {
     }
   }
   if (!(robust_scale >= 0.0) || !std::isfinite(robust_scale)) {
-    violations.push_back(
-        fmt::format("robust_scale = {}, must be finite and >= 0", robust_scale));
+    violations.push_back(fmt::format("robust_scale = {}, must be finite and >= 0", robust_scale));
   }
   if (num_threads < 1) {
     violations.push_back(fmt::format("num_threads = {}, must be >= 1", num_threads));
@@ -114,9 +113,8 @@ WindowSummary WindowProblem::Solve(
   const Vector6d weights = options_.PriorWeights();
   for (int t = lo + 1; t + 1 < hi; ++t) {
     if (!free[t - 1 - lo] && !free[t - lo] && !free[t + 1 - lo]) continue;
-    ceres::LossFunction* loss = options_.robust_scale > 0.0
-                                    ? new ceres::CauchyLoss(options_.robust_scale)
-                                    : nullptr;
+    ceres::LossFunction* loss =
+        options_.robust_scale > 0.0 ? new ceres::CauchyLoss(options_.robust_scale) : nullptr;
     problem.AddResidualBlock(new ConstantVelocityCost(weights, options_.prior), loss,
                              parameters[t - 1 - lo].data(), parameters[t - lo].data(),
                              parameters[t + 1 - lo].data());

@@ -9,9 +9,9 @@
 //
 // Usage: window_bench --config configs/annotate.yaml --sequence DIR[:K] [--sequence ...]
 //          [--set section.key=value]...
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -36,8 +36,7 @@ struct Row {
 };
 
 Row Measure(const std::vector<Eigen::Isometry3d>& poses,
-            const std::vector<Eigen::Isometry3d>& truth, const Eigen::Vector3d& centre,
-            int step) {
+            const std::vector<Eigen::Isometry3d>& truth, const Eigen::Vector3d& centre, int step) {
   Row row;
   const int n = static_cast<int>(truth.size());
   row.all = CompareTrajectories(poses, truth, centre, 0, n);
@@ -53,14 +52,14 @@ Row Measure(const std::vector<Eigen::Isometry3d>& poses,
 }
 
 std::string Format(const std::string& name, const std::string& poses, const Row& r) {
-  const std::string step = r.step_rotation_deg < 0.0
-                               ? "–"
-                               : fmt::format("{:.3f} / {:.3f}", r.step_rotation_deg,
-                                             r.step_translation_mm);
-  return fmt::format("| {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.4f} | {:.4f} | {} |",
-                     name, poses, r.all.rotation_deg, r.all.translation_mm.x(),
-                     r.all.translation_mm.y(), r.all.translation_mm.z(),
-                     r.all.jitter_rotation_deg, r.all.jitter_translation_mm, step);
+  const std::string step =
+      r.step_rotation_deg < 0.0
+          ? "–"
+          : fmt::format("{:.3f} / {:.3f}", r.step_rotation_deg, r.step_translation_mm);
+  return fmt::format("| {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.4f} | {:.4f} | {} |", name,
+                     poses, r.all.rotation_deg, r.all.translation_mm.x(), r.all.translation_mm.y(),
+                     r.all.translation_mm.z(), r.all.jitter_rotation_deg,
+                     r.all.jitter_translation_mm, step);
 }
 
 int Run(int argc, char** argv) {
@@ -79,8 +78,9 @@ int Run(int argc, char** argv) {
     return 2;
   }
   options->window.enabled = true;
-  std::printf("| sequence | poses | rotation (deg) | x (mm) | y (mm) | z (mm) | "
-              "jitter rot (deg/frame²) | jitter trans (mm/frame²) | step frames deg / mm |\n");
+  std::printf(
+      "| sequence | poses | rotation (deg) | x (mm) | y (mm) | z (mm) | "
+      "jitter rot (deg/frame²) | jitter trans (mm/frame²) | step frames deg / mm |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& spec : sequences) {
     const size_t colon = spec.rfind(':');
@@ -115,9 +115,9 @@ int Run(int argc, char** argv) {
     std::printf("%s\n", Format(name, "per-frame",
                                Measure(annotation->per_frame_rig_from_object, *truth, centre, step))
                             .c_str());
-    std::printf("%s\n",
-                Format(name, "window", Measure(annotation->rig_from_object, *truth, centre, step))
-                    .c_str());
+    std::printf(
+        "%s\n",
+        Format(name, "window", Measure(annotation->rig_from_object, *truth, centre, step)).c_str());
     std::fprintf(stderr, "%s: %zu frames, %d failed, %.1f s (per-frame solves + window)\n",
                  dir.c_str(), annotation->frames.size(), annotation->failed_frames, seconds);
     std::fflush(stdout);

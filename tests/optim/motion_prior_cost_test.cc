@@ -55,8 +55,8 @@ std::vector<Triple> Triples() {
                            Spec{"large relative rotations", 2.0, 1.2, 40.0},
                            Spec{"very large relative rotations", 3.0, 2.5, 80.0}}) {
     for (int seed = 0; seed < 3; ++seed) {
-      const Eigen::Isometry3d a =
-          Pose(spec.absolute_rad * RandomUnit(rng), Eigen::Vector3d(30, -20, 500) + 50 * RandomUnit(rng));
+      const Eigen::Isometry3d a = Pose(spec.absolute_rad * RandomUnit(rng),
+                                       Eigen::Vector3d(30, -20, 500) + 50 * RandomUnit(rng));
       const Eigen::Isometry3d b =
           a * Pose(spec.step_rad * RandomUnit(rng), spec.step_mm * RandomUnit(rng));
       const Eigen::Isometry3d c =
@@ -110,10 +110,10 @@ TEST(ConstantVelocityCostTest, DecoupledIsZeroOnStraightCentreAndConstantSpin) {
     const Eigen::Vector3d omega = 0.1 * RandomUnit(rng);
     const Eigen::Vector3d velocity = 5.0 * RandomUnit(rng);
     const Eigen::Isometry3d a = Pose(2.5 * RandomUnit(rng), 400.0 * RandomUnit(rng));
-    const Eigen::Isometry3d b = Pose(LogSO3(Eigen::Matrix3d(a.linear() * ExpSO3(omega))),
-                                     a.translation() + velocity);
-    Eigen::Isometry3d c = Pose(LogSO3(Eigen::Matrix3d(b.linear() * ExpSO3(omega))),
-                               b.translation() + velocity);
+    const Eigen::Isometry3d b =
+        Pose(LogSO3(Eigen::Matrix3d(a.linear() * ExpSO3(omega))), a.translation() + velocity);
+    Eigen::Isometry3d c =
+        Pose(LogSO3(Eigen::Matrix3d(b.linear() * ExpSO3(omega))), b.translation() + velocity);
     PoseParameters pa = ToPoseParameters(a), pb = ToPoseParameters(b), pc = ToPoseParameters(c);
     const double* parameters[] = {pa.data(), pb.data(), pc.data()};
     Vector6d residual;

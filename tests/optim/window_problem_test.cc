@@ -156,11 +156,12 @@ TEST_F(WindowSequenceTest, SlidingWindowHalvesJitterWithoutRaisingTheError) {
   for (const auto& [first, end] : {std::pair{0, kStep}, std::pair{kStep, kFrames}}) {
     const TrajectoryErrors before = CompareTrajectories(*per_frame_, *truth_, centre, first, end);
     const TrajectoryErrors after = CompareTrajectories(smoothed, *truth_, centre, first, end);
-    std::printf("frames [%d, %d): jitter per-frame %.4f deg %.4f mm -> window %.4f deg %.4f mm; "
-                "mean error %.4f deg %.4f mm -> %.4f deg %.4f mm\n",
-                first, end, before.jitter_rotation_deg, before.jitter_translation_mm,
-                after.jitter_rotation_deg, after.jitter_translation_mm, before.rotation_deg,
-                before.translation_mm.norm(), after.rotation_deg, after.translation_mm.norm());
+    std::printf(
+        "frames [%d, %d): jitter per-frame %.4f deg %.4f mm -> window %.4f deg %.4f mm; "
+        "mean error %.4f deg %.4f mm -> %.4f deg %.4f mm\n",
+        first, end, before.jitter_rotation_deg, before.jitter_translation_mm,
+        after.jitter_rotation_deg, after.jitter_translation_mm, before.rotation_deg,
+        before.translation_mm.norm(), after.rotation_deg, after.translation_mm.norm());
     EXPECT_LT(after.jitter_rotation_deg, 0.5 * before.jitter_rotation_deg) << first;
     EXPECT_LT(after.jitter_translation_mm, 0.5 * before.jitter_translation_mm) << first;
     EXPECT_LE(after.rotation_deg, before.rotation_deg) << first;

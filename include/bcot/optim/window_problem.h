@@ -81,14 +81,14 @@ struct WindowProblemOptions {
 };
 
 struct WindowSummary {
-  int first = 0;             // frames [first, end)
+  int first = 0;  // frames [first, end)
   int end = 0;
-  int free_frames = 0;       // frames with region residuals (the others were held)
-  int iterations = 0;        // Ceres iterations
+  int free_frames = 0;        // frames with region residuals (the others were held)
+  int iterations = 0;         // Ceres iterations
   double initial_cost = 0.0;  // Ceres cost (region energy + ½‖prior‖²) at the per-frame poses
   double final_cost = 0.0;
-  bool usable = true;        // false: Ceres failed, the window's poses were left unchanged
-  std::string message;       // Ceres' message when !usable
+  bool usable = true;   // false: Ceres failed, the window's poses were left unchanged
+  std::string message;  // Ceres' message when !usable
 };
 
 class WindowProblem {
