@@ -94,6 +94,49 @@ Eigen::Matrix3d InverseLeftJacobianSO3(const Eigen::Vector3d& phi) {
   return Eigen::Matrix3d::Identity() - 0.5 * phi_hat + b * phi_hat * phi_hat;
 }
 
+namespace {
+
+// Q(ρ, φ), the top-right block of the SE(3) left Jacobian, summed from its series:
+// J_l(ξ) = Σ_k ad_ξ^k / (k+1)! with ad_ξ = [[φ^, ρ^], [0, φ^]]. The top-right block of ad_ξ^k
+// is Σ_{i+j=k−1} φ^^i·ρ^·φ^^j, built recursively as B_k = φ^·B_{k−1} + ρ^·φ^^{k−1}.
+Eigen::Matrix3d SE3JacobianQ(const Vector6d& twist) {
+  const Eigen::Matrix3d rho_hat = Hat(twist.head<3>());
+  const Eigen::Matrix3d phi_hat = Hat(twist.tail<3>());
+  Eigen::Matrix3d block = rho_hat;                          // B_1
+  Eigen::Matrix3d phi_power = Eigen::Matrix3d::Identity();  // φ^^{k−1}
+  Eigen::Matrix3d q = 0.5 * block;                          // B_1 / 2!
+  double factorial = 2.0;
+  for (int k = 2; k < 60; ++k) {
+    phi_power = phi_power * phi_hat;
+    block = phi_hat * block + rho_hat * phi_power;
+    factorial *= (k + 1);
+    const Eigen::Matrix3d term = block / factorial;
+    q += term;
+    if (term.cwiseAbs().maxCoeff() <= 1e-18 * (1.0 + q.cwiseAbs().maxCoeff())) break;
+  }
+  return q;
+}
+
+}  // namespace
+
+Matrix6d LeftJacobianSE3(const Vector6d& twist) {
+  const Eigen::Matrix3d j = LeftJacobianSO3(twist.tail<3>());
+  Matrix6d result = Matrix6d::Zero();
+  result.topLeftCorner<3, 3>() = j;
+  result.bottomRightCorner<3, 3>() = j;
+  result.topRightCorner<3, 3>() = SE3JacobianQ(twist);
+  return result;
+}
+
+Matrix6d InverseLeftJacobianSE3(const Vector6d& twist) {
+  const Eigen::Matrix3d j_inverse = InverseLeftJacobianSO3(twist.tail<3>());
+  Matrix6d result = Matrix6d::Zero();
+  result.topLeftCorner<3, 3>() = j_inverse;
+  result.bottomRightCorner<3, 3>() = j_inverse;
+  result.topRightCorner<3, 3>() = -j_inverse * SE3JacobianQ(twist) * j_inverse;
+  return result;
+}
+
 Eigen::Isometry3d ExpSE3(const Vector6d& twist) {
   const Eigen::Vector3d rho = twist.head<3>();
   const Eigen::Vector3d phi = twist.tail<3>();

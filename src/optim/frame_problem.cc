@@ -125,7 +125,11 @@ LevelOptions OptionsAtLevel(const FrameProblemOptions& options, int level) {
 // its correspondence lines (either may be absent).
 struct ViewTemplate {
   int view = 0;
-  std::unique_ptr<RegionCostFunction> energy;                   // w·Σ F over every pixel
+  std::shared_ptr<const RegionTemplate> region_template;   // null without a dense term
+  RegionCostOptions cost;                                  // with the view's weight
+  std::unique_ptr<RegionCostFunction> energy;              // w·Σ F over every pixel
+  std::shared_ptr<const CorrespondenceLines> lines;        // null without a sparse term
+  double line_weight = 0.0;                                // w_v · lines.weight
   std::unique_ptr<CorrespondenceLineCostFunction> line_energy;  // ½Σ r² over every line
 
   double Energy(const double* parameters) const {
@@ -172,7 +176,8 @@ FrameProblem::FrameProblem(const RayCaster& caster, const FrameProblemOptions& o
 }
 
 FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
-                                 Eigen::Isometry3d* rig_from_objcentre) const {
+                                 Eigen::Isometry3d* rig_from_objcentre,
+                                 std::vector<ViewLinearisation>* linearisations) const {
   BCOT_CHECK(rig_from_objcentre != nullptr);
   for (const FrameView& view : views) {
     BCOT_CHECK(view.camera != nullptr && view.image != nullptr && view.color_model != nullptr);
@@ -185,7 +190,9 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
   PoseParameters x = ToPoseParameters(start);
   const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
 
+  if (linearisations != nullptr) linearisations->clear();
   auto fail = [&](FrameTermination termination, std::string message) {
+    if (linearisations != nullptr) linearisations->clear();
     summary.termination = termination;
     summary.message = std::move(message);
     *rig_from_objcentre = start;
@@ -227,13 +234,15 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
         // Options were validated and the view checked above: a failure here is a bug.
         BCOT_CHECK(region_template.ok());
         if (!region_template->pixels.empty()) {
-          auto shared = std::make_shared<const RegionTemplate>(std::move(region_template).value());
-          RegionCostOptions cost_options = level_options.cost;
-          cost_options.view_weight = view.weight;
-          const int pixel_count = static_cast<int>(shared->pixels.size());
-          t.energy = std::make_unique<RegionCostFunction>(*view.camera, view.cam_from_rig, shared,
-                                                          0, pixel_count, cost_options);
-          AddRegionResidualBlocks(*view.camera, view.cam_from_rig, shared, cost_options,
+          t.region_template =
+              std::make_shared<const RegionTemplate>(std::move(region_template).value());
+          t.cost = level_options.cost;
+          t.cost.view_weight = view.weight;
+          const int pixel_count = static_cast<int>(t.region_template->pixels.size());
+          t.energy = std::make_unique<RegionCostFunction>(*view.camera, view.cam_from_rig,
+                                                          t.region_template, 0, pixel_count,
+                                                          t.cost);
+          AddRegionResidualBlocks(*view.camera, view.cam_from_rig, t.region_template, t.cost,
                                   x.data(), &problem);
           if (step.level == 0) summary.views[v].pixels = pixel_count;
         }
@@ -244,14 +253,14 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
             *view.color_model, silhouette, level_options.lines);
         BCOT_CHECK(lines.ok());
         if (!lines->lines.empty()) {
-          auto shared = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
-          const double weight = view.weight * level_options.lines.weight;
+          t.lines = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
+          t.line_weight = view.weight * level_options.lines.weight;
           t.line_energy = std::make_unique<CorrespondenceLineCostFunction>(
-              *view.camera, view.cam_from_rig, shared, weight);
+              *view.camera, view.cam_from_rig, t.lines, t.line_weight);
           problem.AddResidualBlock(new CorrespondenceLineCostFunction(
-                                       *view.camera, view.cam_from_rig, shared, weight),
+                                       *view.camera, view.cam_from_rig, t.lines, t.line_weight),
                                    nullptr, x.data());
-          if (step.level == 0) summary.views[v].lines = static_cast<int>(shared->lines.size());
+          if (step.level == 0) summary.views[v].lines = static_cast<int>(t.lines->lines.size());
         }
       }
       if (t.energy == nullptr && t.line_energy == nullptr) continue;
@@ -288,6 +297,13 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
       return fail(FrameTermination::kSolverFailure, where + ": the energy is not finite");
     }
     summary.rounds = step.round + 1;
+    if (linearisations != nullptr) {
+      linearisations->clear();
+      for (const ViewTemplate& t : templates) {
+        linearisations->push_back({*views[t.view].camera, views[t.view].cam_from_rig,
+                                   t.region_template, t.cost, t.lines, t.line_weight});
+      }
+    }
     const Eigen::Isometry3d round_end = FromPoseParameters(x.data());
     summary.last_round_rotation_deg =
         RotationDistanceDeg(linearisation_pose.linear(), round_end.linear());

@@ -82,13 +82,14 @@ void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
 }
 
 FrameSummary MultiViewTracker::Solve(const std::vector<cv::Mat3b>& images,
-                                     Eigen::Isometry3d* rig_from_objcentre) {
+                                     Eigen::Isometry3d* rig_from_objcentre,
+                                     std::vector<ViewLinearisation>* linearisations) {
   std::vector<FrameView> frame_views;
   for (size_t v = 0; v < views_.size(); ++v) {
     frame_views.push_back({&views_[v].camera, views_[v].cam_from_rig, &images[v],
                            color_models_[v].get(), views_[v].weight});
   }
-  return problem_.Solve(frame_views, rig_from_objcentre);
+  return problem_.Solve(frame_views, rig_from_objcentre, linearisations);
 }
 
 Status MultiViewTracker::Reset(const std::vector<cv::Mat3b>& images,
@@ -99,14 +100,15 @@ Status MultiViewTracker::Reset(const std::vector<cv::Mat3b>& images,
   return Status::Ok();
 }
 
-StatusOr<FrameSummary> MultiViewTracker::Initialize(const std::vector<cv::Mat3b>& images,
-                                                    Eigen::Isometry3d* rig_from_objcentre) {
+StatusOr<FrameSummary> MultiViewTracker::Initialize(
+    const std::vector<cv::Mat3b>& images, Eigen::Isometry3d* rig_from_objcentre,
+    std::vector<ViewLinearisation>* linearisations) {
   BCOT_CHECK(rig_from_objcentre != nullptr);
   BCOT_RETURN_IF_ERROR(CheckImages(images));
   FrameSummary summary;
   for (int pass = 0; pass < options_.bootstrap_passes; ++pass) {
     LearnColors(images, *rig_from_objcentre, /*fresh=*/true);
-    summary = Solve(images, rig_from_objcentre);
+    summary = Solve(images, rig_from_objcentre, linearisations);
     if (!summary.usable()) break;
   }
   previous_rig_from_objcentre_.reset();
@@ -114,7 +116,8 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(const std::vector<cv::Mat3b>
 }
 
 StatusOr<FrameSummary> MultiViewTracker::Track(const std::vector<cv::Mat3b>& images,
-                                               Eigen::Isometry3d* rig_from_objcentre) {
+                                               Eigen::Isometry3d* rig_from_objcentre,
+                                               std::vector<ViewLinearisation>* linearisations) {
   BCOT_CHECK(rig_from_objcentre != nullptr);
   BCOT_RETURN_IF_ERROR(CheckImages(images));
   const Eigen::Isometry3d last = *rig_from_objcentre;
@@ -122,7 +125,7 @@ StatusOr<FrameSummary> MultiViewTracker::Track(const std::vector<cv::Mat3b>& ima
     *rig_from_objcentre =
         PredictPose(*previous_rig_from_objcentre_, last, options_.velocity_prediction);
   }
-  FrameSummary summary = Solve(images, rig_from_objcentre);
+  FrameSummary summary = Solve(images, rig_from_objcentre, linearisations);
   if (summary.usable()) {
     LearnColors(images, *rig_from_objcentre, /*fresh=*/false);
     previous_rig_from_objcentre_ = last;

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <utility>
 #include <functional>
 #include <string>
 #include <vector>
@@ -15,6 +17,8 @@ Status AnnotateOptions::Validate() const {
   std::vector<std::string> violations;
   const Status tracker_status = tracker.Validate();
   if (!tracker_status.ok()) violations.push_back(tracker_status.message());
+  const Status window_status = window.Validate();
+  if (!window_status.ok()) violations.push_back(window_status.message());
   if (!views.weights.empty() && !views.cameras.empty() &&
       views.weights.size() != views.cameras.size()) {
     violations.push_back(fmt::format("views: weights has {} entries for {} cameras",
@@ -238,6 +242,32 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
         own.views = o->views;
         return own.Validate();
       }));
+
+  WindowProblemOptions& window = o->window;
+  BCOT_RETURN_IF_ERROR(ParseSection(
+      root, "window",
+      [&](YamlMap& m) -> Status {
+        BCOT_RETURN_IF_ERROR(m.GetOptional("enabled", &window.enabled));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("size", &window.size));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("overlap", &window.overlap));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("iterations", &window.iterations));
+        int prior = static_cast<int>(window.prior);
+        BCOT_RETURN_IF_ERROR(GetEnum(m, "prior", {"se3", "decoupled"}, &prior));
+        window.prior = static_cast<MotionPriorForm>(prior);
+        for (auto [key, axes] : {std::pair{"rotation_sigma_deg", &window.rotation_sigma_deg},
+                                 std::pair{"translation_sigma_mm", &window.translation_sigma_mm}}) {
+          if (!m.Has(key)) continue;
+          std::vector<double> values;
+          BCOT_RETURN_IF_ERROR(m.Get(key, &values));
+          if (values.size() != 3) {
+            return m.Error(key, fmt::format("has {} values, expected 3 (x, y, z)", values.size()));
+          }
+          std::copy(values.begin(), values.end(), axes->begin());
+        }
+        BCOT_RETURN_IF_ERROR(m.GetOptional("robust_scale", &window.robust_scale));
+        return m.GetOptional("num_threads", &window.num_threads);
+      },
+      [&] { return window.Validate(); }));
   if (root.Has("quality")) {
     BCOT_RETURN_IF_ERROR(ParseQualityOptions(root.Node("quality"), source_name, &o->quality));
   }
@@ -342,6 +372,19 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
   section("views");
   line("cameras", List(o.views.cameras, Quote));
   line("weights", List(o.views.weights, number));
+  const WindowProblemOptions& w = o.window;
+  section("window");
+  line("enabled", w.enabled ? "true" : "false");
+  line("size", number(w.size));
+  line("overlap", number(w.overlap));
+  line("iterations", number(w.iterations));
+  line("prior", w.prior == MotionPriorForm::kSe3 ? "se3" : "decoupled");
+  line("rotation_sigma_deg", List(std::vector<double>(w.rotation_sigma_deg.begin(),
+                                                      w.rotation_sigma_deg.end()), number));
+  line("translation_sigma_mm", List(std::vector<double>(w.translation_sigma_mm.begin(),
+                                                        w.translation_sigma_mm.end()), number));
+  line("robust_scale", number(w.robust_scale));
+  line("num_threads", number(w.num_threads));
   return y + FormatQualityOptions(o.quality);
 }
 

@@ -12,7 +12,9 @@
 
 #include "bcot/core/file_util.h"
 #include "bcot/core/pose_io.h"
+#include "bcot/core/se3.h"
 #include "bcot/optim/multi_view_tracker.h"
+#include "bcot/optim/window_problem.h"
 #include "bcot/pipeline/quality_report.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
@@ -87,7 +89,7 @@ std::string FramesCsv(const SequenceAnnotation& annotation) {
   std::string csv = "frame,termination,rounds,iterations,initial_energy,final_energy";
   for (const std::string& name : annotation.view_names) csv += ",energy_" + name;
   for (const std::string& name : annotation.view_names) csv += ",pixels_" + name;
-  csv += ",milliseconds\n";
+  csv += ",milliseconds,window_rotation_deg,window_translation_mm\n";
   for (size_t f = 0; f < annotation.frames.size(); ++f) {
     const AnnotatedFrame& frame = annotation.frames[f];
     const FrameSummary& s = frame.summary;
@@ -95,7 +97,8 @@ std::string FramesCsv(const SequenceAnnotation& annotation) {
                        s.rounds, s.iterations, s.initial_energy, s.final_energy);
     for (const FrameViewSummary& view : s.views) csv += fmt::format(",{:.6g}", view.energy);
     for (const FrameViewSummary& view : s.views) csv += fmt::format(",{}", view.pixels);
-    csv += fmt::format(",{:.1f}\n", frame.milliseconds);
+    csv += fmt::format(",{:.1f},{:.6g},{:.6g}\n", frame.milliseconds, frame.window_rotation_deg,
+                       frame.window_translation_mm);
   }
   return csv;
 }
@@ -152,6 +155,10 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
   const Eigen::Isometry3d objcentre_from_template = mesh->objcentre_from_template();
   const Eigen::Isometry3d template_from_objcentre = objcentre_from_template.inverse();
   Eigen::Isometry3d rig_from_objcentre = *sequence.init_rig_from_object * template_from_objcentre;
+  std::unique_ptr<WindowSmoother> window;
+  if (options.window.enabled) window = std::make_unique<WindowSmoother>(options.window);
+  std::vector<ViewLinearisation> linearisations;
+  std::vector<ViewLinearisation>* const templates_out = window ? &linearisations : nullptr;
 
   for (int frame = 0; frame < sequence.num_frames; ++frame) {
     std::vector<cv::Mat3b> images;
@@ -163,8 +170,10 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
     }
     const auto start = std::chrono::steady_clock::now();
     StatusOr<FrameSummary> summary = frame == 0
-                                         ? (*tracker)->Initialize(images, &rig_from_objcentre)
-                                         : (*tracker)->Track(images, &rig_from_objcentre);
+                                         ? (*tracker)->Initialize(images, &rig_from_objcentre,
+                                                                  templates_out)
+                                         : (*tracker)->Track(images, &rig_from_objcentre,
+                                                             templates_out);
     if (!summary.ok()) return summary.status();
     AnnotatedFrame record;
     record.summary = *summary;
@@ -174,7 +183,22 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
     if (!summary->usable()) ++annotation.failed_frames;
     annotation.frames.push_back(record);
     annotation.rig_from_object.push_back(rig_from_objcentre * objcentre_from_template);
+    if (window) window->Push(rig_from_objcentre, std::move(linearisations));
     if (progress) progress(frame + 1, sequence.num_frames);
+  }
+  annotation.per_frame_rig_from_object = annotation.rig_from_object;
+  if (window) {
+    window->Finish();
+    for (int frame = 0; frame < sequence.num_frames; ++frame) {
+      const Eigen::Isometry3d smoothed =
+          window->rig_from_objcentre()[frame] * objcentre_from_template;
+      AnnotatedFrame& record = annotation.frames[frame];
+      record.window_rotation_deg =
+          RotationDistanceDeg(annotation.rig_from_object[frame].linear(), smoothed.linear());
+      record.window_translation_mm =
+          (annotation.rig_from_object[frame].translation() - smoothed.translation()).norm();
+      annotation.rig_from_object[frame] = smoothed;
+    }
   }
   return annotation;
 }

@@ -114,6 +114,29 @@ TEST(Se3Test, AdjointConjugatesTwists) {
   }
 }
 
+// J_l of SE(3) is the derivative of Exp: Log(Exp(ξ + ε)·Exp(ξ)⁻¹) ≈ J_l(ξ)·ε, checked by
+// central differences at small, medium and near-π angles; the inverse inverts it.
+TEST(Se3Test, LeftJacobianMatchesNumericDerivativeAndInverts) {
+  std::mt19937 rng(19);
+  for (double angle : {0.0, 1e-4, 0.3, 1.5, 3.0}) {
+    Vector6d xi;
+    xi << 40.0 * RandomUnit(rng), angle * RandomUnit(rng);
+    const Matrix6d analytic = LeftJacobianSE3(xi);
+    Matrix6d numeric;
+    const double h = 1e-6;
+    const Eigen::Isometry3d exp_inverse = ExpSE3(xi).inverse();
+    for (int k = 0; k < 6; ++k) {
+      const Vector6d e = Vector6d::Unit(k) * h;
+      numeric.col(k) = (LogSE3(ExpSE3(xi + e) * exp_inverse) -
+                        LogSE3(ExpSE3(xi - e) * exp_inverse)) / (2.0 * h);
+    }
+    EXPECT_LT((analytic - numeric).cwiseAbs().maxCoeff(), 1e-6) << angle;
+    EXPECT_LT((InverseLeftJacobianSE3(xi) * analytic - Matrix6d::Identity()).cwiseAbs().maxCoeff(),
+              1e-12)
+        << angle;
+  }
+}
+
 // The right-perturbation derivative the region cost functions rely on (DESIGN.md S.19):
 // ∂(T·Exp(δ)·X)/∂δ at δ = 0 is R·[I | −X^].
 TEST(Se3Test, PointDerivativeMatchesNumeric) {

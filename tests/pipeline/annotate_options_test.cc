@@ -163,6 +163,33 @@ TEST(AnnotateOptionsTest, WrongTypesAndEnumsAreErrors) {
               HasSubstr("weights has 1 entries for 2 cameras"));
 }
 
+TEST(AnnotateOptionsTest, WindowSectionParsesAndNamesBadValues) {
+  const StatusOr<AnnotateOptions> options = ParseText(
+      "window:\n  enabled: true\n  prior: se3\n  size: 12\n  overlap: 4\n  rotation_sigma_deg: [0.1, 0.2, "
+      "0.3]\n  translation_sigma_mm: [1, 2, 3]\n  robust_scale: 0\n");
+  ASSERT_TRUE(options.ok()) << options.status().message();
+  EXPECT_TRUE(options->window.enabled);
+  EXPECT_EQ(options->window.size, 12);
+  EXPECT_EQ(options->window.prior, MotionPriorForm::kSe3);
+  EXPECT_EQ(options->window.overlap, 4);
+  EXPECT_DOUBLE_EQ(options->window.rotation_sigma_deg[2], 0.3);
+  EXPECT_DOUBLE_EQ(options->window.translation_sigma_mm[1], 2.0);
+  EXPECT_DOUBLE_EQ(options->window.robust_scale, 0.0);
+  // Round trip of a non-default window section.
+  EXPECT_EQ(FormatAnnotateOptions(*ParseText(FormatAnnotateOptions(*options))),
+            FormatAnnotateOptions(*options));
+  EXPECT_THAT(ParseText("window:\n  size: 8\n  overlap: 8\n").status().message(),
+              HasSubstr("run.yaml:3: window.overlap = 8"));
+  EXPECT_THAT(ParseText("window:\n  size: 8\n  translation_sigma_mm: [1, 0, 1]\n")
+                  .status()
+                  .message(),
+              HasSubstr("run.yaml:3: window.translation_sigma_mm = 0 (y)"));
+  EXPECT_THAT(ParseText("window:\n  rotation_sigma_deg: [1, 2]\n").status().message(),
+              HasSubstr("run.yaml:2: window.rotation_sigma_deg: has 2 values, expected 3"));
+  EXPECT_THAT(ParseText("window:\n  enabled: maybe\n").status().message(),
+              HasSubstr("enabled"));
+}
+
 TEST(AnnotateOptionsTest, OverridesAreValidatedTheSameWay) {
   const StatusOr<AnnotateOptions> options =
       ReadAnnotateOptions(test::SourcePath("configs/annotate.yaml"),

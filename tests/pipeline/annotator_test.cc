@@ -8,6 +8,7 @@
 
 #include "bcot/core/file_util.h"
 #include "bcot/core/pose_io.h"
+#include "bcot/core/sequence.h"
 #include "bcot/pipeline/synth_options.h"
 #include "bcot/pipeline/synthesizer.h"
 #include "test_util.h"
@@ -128,6 +129,45 @@ TEST_F(AnnotatorTest, BadInputsAreErrorsNamingTheFile) {
   EXPECT_EQ(bad_image.code(), StatusCode::kInvalidInput);
   EXPECT_THAT(bad_image.message(), HasSubstr("cam1/000002.png"));
   EXPECT_FALSE(std::filesystem::exists(copy.File("out/DONE")));
+}
+
+// The temporal window refines the per-frame poses: both are in the annotation, the window's
+// change per frame is in frames.csv and its options in config.resolved.yaml; off, the final
+// poses are the per-frame ones.
+TEST_F(AnnotatorTest, WindowRefinesThePerFramePosesAndIsRecorded) {
+  const StatusOr<Sequence> sequence = LoadSequence(SequenceDir());
+  ASSERT_TRUE(sequence.ok());
+  AnnotateOptions options;
+  options.tracker.frame.rounds = 2;
+  options.window.enabled = false;
+  const StatusOr<SequenceAnnotation> off = AnnotateSequence(*sequence, options);
+  ASSERT_TRUE(off.ok()) << off.status().message();
+  options.window.enabled = true;
+  options.window.size = 0;  // whole sequence
+  const StatusOr<SequenceAnnotation> on = AnnotateSequence(*sequence, options);
+  ASSERT_TRUE(on.ok()) << on.status().message();
+  ASSERT_EQ(on->rig_from_object.size(), 4u);
+  double moved_mm = 0.0;
+  for (size_t f = 0; f < 4; ++f) {
+    EXPECT_TRUE(off->rig_from_object[f].isApprox(off->per_frame_rig_from_object[f]));
+    EXPECT_EQ(off->frames[f].window_translation_mm, 0.0);
+    // The per-frame solves do not depend on the window.
+    EXPECT_TRUE(on->per_frame_rig_from_object[f].isApprox(off->rig_from_object[f], 1e-9));
+    EXPECT_NEAR(on->frames[f].window_translation_mm,
+                (on->rig_from_object[f].translation() -
+                 on->per_frame_rig_from_object[f].translation()).norm(),
+                1e-9);
+    moved_mm += on->frames[f].window_translation_mm;
+  }
+  EXPECT_GT(moved_mm, 0.0);
+  test::TempDir out;
+  ASSERT_TRUE(WriteAnnotation(out.path(), *sequence, options, "0", *on).ok());
+  const StatusOr<std::string> csv = ReadTextFile(out.File("frames.csv"));
+  ASSERT_TRUE(csv.ok());
+  EXPECT_THAT(*csv, HasSubstr(",milliseconds,window_rotation_deg,window_translation_mm\n"));
+  const StatusOr<std::string> config = ReadTextFile(out.File("config.resolved.yaml"));
+  ASSERT_TRUE(config.ok());
+  EXPECT_THAT(*config, HasSubstr("window:\n  enabled: true\n  size: 0\n"));
 }
 
 }  // namespace

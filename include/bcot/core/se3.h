@@ -34,6 +34,13 @@ Eigen::Matrix3d LeftJacobianSO3(const Eigen::Vector3d& phi);
 Eigen::Matrix3d InverseLeftJacobianSO3(const Eigen::Vector3d& phi);
 
 Eigen::Isometry3d ExpSE3(const Vector6d& twist);
+// Left Jacobian of SE(3) for twists (ρ, φ): Exp(ξ + ε) ≈ Exp(J_l(ξ)·ε)·Exp(ξ), i.e.
+// J_l(ξ) = Σ (ad_ξ)^k / (k+1)! = [[J_l(φ), Q(ρ, φ)], [0, J_l(φ)]], and its inverse
+// [[J⁻¹, −J⁻¹·Q·J⁻¹], [0, J⁻¹]] (J = J_l(φ) of SO(3)). The right Jacobian is J_r(ξ) = J_l(−ξ).
+// Q is summed from the series of ad_ξ (entire in ξ, no cancellation: machine precision for
+// |φ| ≤ π); the inverse needs |φ| < 2π.
+Matrix6d LeftJacobianSE3(const Vector6d& twist);
+Matrix6d InverseLeftJacobianSE3(const Vector6d& twist);
 Vector6d LogSE3(const Eigen::Isometry3d& transform);
 
 // Adjoint of T = (R, t) acting on (ρ, φ) twists: Ad_T = [[R, t^R], [0, R]], so that

@@ -29,6 +29,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -133,6 +134,20 @@ struct FrameSummary {
   }
 };
 
+// The level-0 template of one view in the last round of a solve, with everything a
+// RegionCostFunction needs to evaluate that view's region energy at another pose (the
+// temporal window re-uses it, see window_problem.h). The template is shared and immutable.
+struct ViewLinearisation {
+  Camera camera;
+  Eigen::Isometry3d cam_from_rig = Eigen::Isometry3d::Identity();
+  // The dense term (null when the energy is sparse) and its level-0 options, view_weight = w_v.
+  std::shared_ptr<const RegionTemplate> region_template;
+  RegionCostOptions cost;
+  // The sparse term (null when the energy is dense) and its weight w_v · lines.weight.
+  std::shared_ptr<const CorrespondenceLines> lines;
+  double line_weight = 0.0;
+};
+
 class FrameProblem {
  public:
   // `caster` (the object's mesh) must outlive the problem; `options` must be valid (CHECKed:
@@ -142,8 +157,10 @@ class FrameProblem {
   // Minimises the joint energy starting from *rig_from_objcentre and writes the result there
   // (unless !summary.usable()). Views with weight 0 or the object out of view contribute no
   // residuals. CHECKs that views are complete and images match their cameras.
-  FrameSummary Solve(const std::vector<FrameView>& views,
-                     Eigen::Isometry3d* rig_from_objcentre) const;
+  // When `linearisations` is not null it receives the level-0 templates of the last round
+  // (views without band pixels left out); it is cleared when !summary.usable().
+  FrameSummary Solve(const std::vector<FrameView>& views, Eigen::Isometry3d* rig_from_objcentre,
+                     std::vector<ViewLinearisation>* linearisations = nullptr) const;
 
   const FrameProblemOptions& options() const { return options_; }
 

@@ -64,10 +64,14 @@ class MultiViewTracker {
 
   // See the header comment. Images must match the views' camera sizes (else kInvalidInput).
   Status Reset(const std::vector<cv::Mat3b>& images, const Eigen::Isometry3d& rig_from_objcentre);
+  // `linearisations`, when not null, receives the final solve's level-0 templates (see
+  // FrameProblem::Solve), built with the colour models before this frame's update.
   StatusOr<FrameSummary> Initialize(const std::vector<cv::Mat3b>& images,
-                                    Eigen::Isometry3d* rig_from_objcentre);
+                                    Eigen::Isometry3d* rig_from_objcentre,
+                                    std::vector<ViewLinearisation>* linearisations = nullptr);
   StatusOr<FrameSummary> Track(const std::vector<cv::Mat3b>& images,
-                               Eigen::Isometry3d* rig_from_objcentre);
+                               Eigen::Isometry3d* rig_from_objcentre,
+                               std::vector<ViewLinearisation>* linearisations = nullptr);
 
   const std::vector<TrackedView>& views() const { return views_; }
   const MultiViewTrackerOptions& options() const { return options_; }
@@ -79,7 +83,8 @@ class MultiViewTracker {
   // Updates every view's colour model at the pose; `fresh` replaces the models first.
   void LearnColors(const std::vector<cv::Mat3b>& images, const Eigen::Isometry3d& rig_from_objcentre,
                    bool fresh);
-  FrameSummary Solve(const std::vector<cv::Mat3b>& images, Eigen::Isometry3d* rig_from_objcentre);
+  FrameSummary Solve(const std::vector<cv::Mat3b>& images, Eigen::Isometry3d* rig_from_objcentre,
+                     std::vector<ViewLinearisation>* linearisations);
 
   const RayCaster& caster_;
   std::vector<TrackedView> views_;

@@ -20,6 +20,10 @@
 //   views:   ViewSelection            cameras (names; empty = all), weights (one per camera)
 //   quality: QualityOptions           threshold_px, statistic, allowed_bad_fraction, ...
 //                                     (pipeline/quality_report.h)
+//   window:  WindowProblemOptions     enabled, size, overlap, iterations, prior (decoupled |
+//                                     se3), rotation_sigma_deg
+//                                     [x, y, z], translation_sigma_mm [x, y, z], robust_scale,
+//                                     num_threads
 //
 // Unknown keys, wrong types and out-of-range values are kInvalidConfig errors naming
 // file:line: section.key. configs/annotate.yaml is the annotation setting (5 rounds × 7
@@ -34,6 +38,7 @@
 
 #include "bcot/core/status.h"
 #include "bcot/optim/multi_view_tracker.h"
+#include "bcot/optim/window_problem.h"
 #include "bcot/pipeline/quality_report.h"
 
 namespace bcot {
@@ -49,6 +54,8 @@ struct AnnotateOptions {
   MultiViewTrackerOptions tracker;
   ViewSelection views;
   QualityOptions quality;
+  // The temporal smoothing window after the per-frame solves (off unless enabled).
+  WindowProblemOptions window;
   // Lists every violation in one kInvalidConfig status.
   Status Validate() const;
 };

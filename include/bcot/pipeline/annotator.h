@@ -1,12 +1,15 @@
 // Annotates one sequence directory (DESIGN.md input contract) and writes its annotation
 // directory (output contract): frame 0 from init_pose.txt by MultiViewTracker::Initialize
 // (colour bootstrap + joint solve), every later frame from the previous frame's pose by
-// MultiViewTracker::Track.
+// MultiViewTracker::Track. With `window.enabled`, the temporal smoothing window
+// (window_problem.h) then refines the poses, streaming: it runs while the frames are solved and
+// keeps the templates of at most window.size + 2 frames.
 //
 // Outputs in `out_dir`, each written atomically (temp + rename):
 //   rig_from_object.txt     one pose line per frame (O_t, mm)
 //   <camera>/pose.txt       cam_from_object per frame, for every rig camera (also unused ones)
-//   frames.csv              per frame: termination, rounds, iterations, energy per view, ms
+//   frames.csv              per frame: termination, rounds, iterations, energy per view, ms,
+//                           and the pose change the window made (0 when it is off)
 //   quality.json, quality.csv, report.html   the reprojection-error check (quality_report.h)
 //   config.resolved.yaml    every option used, the tool version, the sequence's absolute path
 //                           and the input hash
@@ -31,11 +34,15 @@ namespace bcot {
 struct AnnotatedFrame {
   FrameSummary summary;
   double milliseconds = 0.0;  // wall time of the solve (information only)
+  // Pose change made by the temporal window (per-frame → final pose); 0 when it is off.
+  double window_rotation_deg = 0.0;
+  double window_translation_mm = 0.0;
 };
 
 struct SequenceAnnotation {
   std::vector<std::string> view_names;                // the cameras used, in solve order
-  std::vector<Eigen::Isometry3d> rig_from_object;     // per frame, O_t
+  std::vector<Eigen::Isometry3d> rig_from_object;     // per frame, O_t (final)
+  std::vector<Eigen::Isometry3d> per_frame_rig_from_object;  // before the window, O_t
   std::vector<AnnotatedFrame> frames;                 // per frame
   int failed_frames = 0;                              // frames whose solve was not usable
 };

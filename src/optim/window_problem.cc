@@ -1,0 +1,198 @@
+#include "bcot/optim/window_problem.h"
+
+#include <ceres/loss_function.h>
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <utility>
+
+#include "bcot/optim/correspondence_line_cost.h"
+#include "bcot/optim/motion_prior_cost.h"
+#include "bcot/optim/region_cost.h"
+#include "bcot/optim/se3_manifold.h"
+#include "violations.h"
+
+namespace bcot {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Frames before and after a window that condition its priors.
+constexpr int kContext = 2;
+
+}  // namespace
+
+Vector6d WindowProblemOptions::PriorWeights() const {
+  Vector6d weights;
+  for (int k = 0; k < 3; ++k) {
+    weights[k] = 1.0 / translation_sigma_mm[k];
+    weights[3 + k] = 1.0 / (rotation_sigma_deg[k] * kPi / 180.0);
+  }
+  return weights;
+}
+
+Status WindowProblemOptions::Validate() const {
+  std::vector<std::string> violations;
+  if (size != 0 && size < 3) {
+    violations.push_back(fmt::format("size = {}, must be 0 (whole sequence) or >= 3", size));
+  }
+  if (size != 0 && (overlap < 0 || overlap > size - 1)) {
+    violations.push_back(
+        fmt::format("overlap = {}, must be in [0, size − 1 = {}]", overlap, std::max(size - 1, 0)));
+  }
+  if (size == 0 && overlap < 0) {
+    violations.push_back(fmt::format("overlap = {}, must be >= 0", overlap));
+  }
+  if (iterations < 1) {
+    violations.push_back(fmt::format("iterations = {}, must be >= 1", iterations));
+  }
+  const char* axes[] = {"x", "y", "z"};
+  for (int k = 0; k < 3; ++k) {
+    if (!(rotation_sigma_deg[k] > 0.0) || !std::isfinite(rotation_sigma_deg[k])) {
+      violations.push_back(fmt::format("rotation_sigma_deg = {} ({}), must be finite and > 0",
+                                       rotation_sigma_deg[k], axes[k]));
+    }
+    if (!(translation_sigma_mm[k] > 0.0) || !std::isfinite(translation_sigma_mm[k])) {
+      violations.push_back(fmt::format("translation_sigma_mm = {} ({}), must be finite and > 0",
+                                       translation_sigma_mm[k], axes[k]));
+    }
+  }
+  if (!(robust_scale >= 0.0) || !std::isfinite(robust_scale)) {
+    violations.push_back(fmt::format("robust_scale = {}, must be finite and >= 0", robust_scale));
+  }
+  if (num_threads < 1) {
+    violations.push_back(fmt::format("num_threads = {}, must be >= 1", num_threads));
+  }
+  return internal::JoinViolations("window", violations);
+}
+
+WindowProblem::WindowProblem(const WindowProblemOptions& options) : options_(options) {
+  BCOT_CHECK(options_.Validate().ok());
+}
+
+WindowSummary WindowProblem::Solve(
+    int first, int end, const std::vector<const std::vector<ViewLinearisation>*>& frame_views,
+    std::vector<Eigen::Isometry3d>* rig_from_objcentre) const {
+  BCOT_CHECK(rig_from_objcentre != nullptr);
+  const int num_frames = static_cast<int>(rig_from_objcentre->size());
+  BCOT_CHECK(0 <= first && first < end && end <= num_frames);
+  BCOT_CHECK(static_cast<int>(frame_views.size()) == end - first);
+  WindowSummary summary;
+  summary.first = first;
+  summary.end = end;
+
+  // Parameter blocks for the window and its context frames [lo, hi).
+  const int lo = std::max(0, first - kContext);
+  const int hi = std::min(num_frames, end + kContext);
+  std::vector<PoseParameters> parameters(hi - lo);
+  std::vector<bool> free(hi - lo, false);
+  Se3Manifold manifold;
+  ceres::Problem::Options problem_options;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
+  for (int t = lo; t < hi; ++t) {
+    parameters[t - lo] = ToPoseParameters((*rig_from_objcentre)[t]);
+    double* block = parameters[t - lo].data();
+    problem.AddParameterBlock(block, kPoseAmbientSize, &manifold);
+    const bool in_window = t >= first && t < end;
+    if (in_window && frame_views[t - first] != nullptr && !frame_views[t - first]->empty()) {
+      free[t - lo] = true;
+      ++summary.free_frames;
+      for (const ViewLinearisation& view : *frame_views[t - first]) {
+        if (view.region_template != nullptr) {
+          AddRegionResidualBlocks(view.camera, view.cam_from_rig, view.region_template,
+                                  view.cost, block, &problem);
+        }
+        if (view.lines != nullptr) {
+          problem.AddResidualBlock(new CorrespondenceLineCostFunction(
+                                       view.camera, view.cam_from_rig, view.lines,
+                                       view.line_weight),
+                                   nullptr, block);
+        }
+      }
+    } else {
+      problem.SetParameterBlockConstant(block);
+    }
+  }
+  if (summary.free_frames == 0) return summary;
+
+  const Vector6d weights = options_.PriorWeights();
+  for (int t = lo + 1; t + 1 < hi; ++t) {
+    if (!free[t - 1 - lo] && !free[t - lo] && !free[t + 1 - lo]) continue;
+    ceres::LossFunction* loss =
+        options_.robust_scale > 0.0 ? new ceres::CauchyLoss(options_.robust_scale) : nullptr;
+    problem.AddResidualBlock(new ConstantVelocityCost(weights, options_.prior), loss,
+                             parameters[t - 1 - lo].data(), parameters[t - lo].data(),
+                             parameters[t + 1 - lo].data());
+  }
+
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver_options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+  solver_options.max_num_iterations = options_.iterations;
+  solver_options.num_threads = options_.num_threads;
+  solver_options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary ceres_summary;
+  ceres::Solve(solver_options, &problem, &ceres_summary);
+  summary.iterations = static_cast<int>(ceres_summary.iterations.size()) - 1;
+  summary.initial_cost = ceres_summary.initial_cost;
+  summary.final_cost = ceres_summary.final_cost;
+  if (!ceres_summary.IsSolutionUsable() || !std::isfinite(ceres_summary.final_cost)) {
+    summary.usable = false;
+    summary.message = ceres_summary.message;
+    return summary;
+  }
+  for (int t = first; t < end; ++t) {
+    if (free[t - lo]) (*rig_from_objcentre)[t] = FromPoseParameters(parameters[t - lo].data());
+  }
+  return summary;
+}
+
+WindowSmoother::WindowSmoother(const WindowProblemOptions& options) : problem_(options) {}
+
+void WindowSmoother::Push(const Eigen::Isometry3d& rig_from_objcentre,
+                          std::vector<ViewLinearisation> views) {
+  BCOT_CHECK(!finished_);
+  poses_.push_back(rig_from_objcentre);
+  buffer_.push_back(std::move(views));
+  const int size = problem_.options().size;
+  if (size == 0) return;  // whole sequence: everything waits for Finish
+  // Window [next_start_, next_start_ + W) runs once its look-ahead frames have arrived.
+  while (next_start_ + size + kContext <= static_cast<int>(poses_.size())) {
+    SolveWindow(next_start_ + size);
+  }
+}
+
+void WindowSmoother::Finish() {
+  BCOT_CHECK(!finished_);
+  finished_ = true;
+  const int num_frames = static_cast<int>(poses_.size());
+  const int size = problem_.options().size;
+  while (next_start_ < num_frames) {
+    const int end = size == 0 ? num_frames : std::min(next_start_ + size, num_frames);
+    SolveWindow(end);
+    if (end == num_frames) break;
+  }
+  buffer_.clear();
+  buffer_first_ = num_frames;
+}
+
+void WindowSmoother::SolveWindow(int end) {
+  const int first = next_start_;
+  std::vector<const std::vector<ViewLinearisation>*> frame_views;
+  for (int t = first; t < end; ++t) frame_views.push_back(&buffer_[t - buffer_first_]);
+  windows_.push_back(problem_.Solve(first, end, frame_views, &poses_));
+  const int size = problem_.options().size;
+  const int step = size == 0 ? end - first : size - problem_.options().overlap;
+  next_start_ = std::min(first + step, end);
+  // Frames before the next window are committed: release their templates.
+  while (buffer_first_ < next_start_ && !buffer_.empty()) {
+    buffer_.pop_front();
+    ++buffer_first_;
+  }
+}
+
+}  // namespace bcot

@@ -1,0 +1,167 @@
+#include "bcot/optim/motion_prior_cost.h"
+
+#include <ceres/gradient_checker.h>
+#include <ceres/numeric_diff_options.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace bcot {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Eigen::Vector3d RandomUnit(std::mt19937& rng) {
+  std::normal_distribution<double> normal;
+  return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+}
+
+Eigen::Isometry3d Pose(const Eigen::Vector3d& rotation_vector, const Eigen::Vector3d& t) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = ExpSO3(rotation_vector);
+  pose.translation() = t;
+  return pose;
+}
+
+Vector6d TestWeights() {
+  Vector6d weights;
+  weights << 1.0 / 0.2, 1.0 / 0.3, 1.0 / 0.5, 300.0, 500.0, 700.0;  // 1/mm, 1/rad
+  return weights;
+}
+
+struct Triple {
+  std::string name;
+  Eigen::Isometry3d a, b, c;
+};
+
+// Seeded triples of rig_from_objcentre: identity, typical frame steps, absolute rotations near
+// π, and large relative rotations between consecutive frames (up to 2.5 rad).
+std::vector<Triple> Triples() {
+  std::mt19937 rng(29);
+  std::vector<Triple> triples;
+  triples.push_back({"identity", Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity(),
+                     Eigen::Isometry3d::Identity()});
+  struct Spec {
+    const char* name;
+    double absolute_rad;
+    double step_rad;
+    double step_mm;
+  };
+  for (const Spec& spec : {Spec{"small steps", 0.7, 0.03, 2.0},
+                           Spec{"near-pi absolute rotation", kPi - 1e-3, 0.05, 3.0},
+                           Spec{"large relative rotations", 2.0, 1.2, 40.0},
+                           Spec{"very large relative rotations", 3.0, 2.5, 80.0}}) {
+    for (int seed = 0; seed < 3; ++seed) {
+      const Eigen::Isometry3d a = Pose(spec.absolute_rad * RandomUnit(rng),
+                                       Eigen::Vector3d(30, -20, 500) + 50 * RandomUnit(rng));
+      const Eigen::Isometry3d b =
+          a * Pose(spec.step_rad * RandomUnit(rng), spec.step_mm * RandomUnit(rng));
+      const Eigen::Isometry3d c =
+          b * Pose(spec.step_rad * RandomUnit(rng), spec.step_mm * RandomUnit(rng));
+      triples.push_back({std::string(spec.name) + " " + std::to_string(seed), a, b, c});
+    }
+  }
+  return triples;
+}
+
+// ceres::GradientChecker through the Se3Manifold of all three blocks: numeric differentiation
+// along X ⊕ δ against the analytic SE(3) Jacobians of the header.
+class ConstantVelocityCostFormTest : public ::testing::TestWithParam<MotionPriorForm> {};
+
+TEST_P(ConstantVelocityCostFormTest, GradientCheckerAcceptsEveryBlock) {
+  const ConstantVelocityCost cost(TestWeights(), GetParam());
+  Se3Manifold manifold;
+  std::vector<const ceres::Manifold*> manifolds = {&manifold, &manifold, &manifold};
+  ceres::NumericDiffOptions numeric_options;
+  // Ridders' default first step is 1% of each ambient coordinate: 0.01 of a quaternion
+  // coefficient (~1°) or 5 mm of a 500 mm translation; the extrapolation from there leaves
+  // ~1e-4 relative error on the rotation columns. 1e-4 keeps the steps in the linear regime.
+  numeric_options.ridders_relative_initial_step_size = 1e-4;
+  ceres::GradientChecker checker(&cost, &manifolds, numeric_options);
+  for (const Triple& triple : Triples()) {
+    PoseParameters a = ToPoseParameters(triple.a);
+    PoseParameters b = ToPoseParameters(triple.b);
+    PoseParameters c = ToPoseParameters(triple.c);
+    const double* parameters[] = {a.data(), b.data(), c.data()};
+    ceres::GradientChecker::ProbeResults results;
+    // Ceres' relative error is per entry: 1e-5 as in region_cost_test.cc, since entries of
+    // ~1e-5 (next to entries of ~300) carry ~1e-11 of numeric round-off.
+    EXPECT_TRUE(checker.Probe(parameters, 1e-5, &results))
+        << triple.name << ": max relative error " << results.maximum_relative_error << "\n"
+        << results.error_log.substr(0, 4000);
+    std::printf("[ %s ] max relative Jacobian error %.2e\n", triple.name.c_str(),
+                results.maximum_relative_error);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Forms, ConstantVelocityCostFormTest,
+                         ::testing::Values(MotionPriorForm::kSe3, MotionPriorForm::kDecoupled));
+
+// kDecoupled is zero when the centre moves on a straight line at constant speed in the rig
+// while the object spins at constant body angular velocity, and equals W times the change of
+// both velocities otherwise.
+TEST(ConstantVelocityCostTest, DecoupledIsZeroOnStraightCentreAndConstantSpin) {
+  const ConstantVelocityCost cost(TestWeights(), MotionPriorForm::kDecoupled);
+  std::mt19937 rng(37);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Eigen::Vector3d omega = 0.1 * RandomUnit(rng);
+    const Eigen::Vector3d velocity = 5.0 * RandomUnit(rng);
+    const Eigen::Isometry3d a = Pose(2.5 * RandomUnit(rng), 400.0 * RandomUnit(rng));
+    const Eigen::Isometry3d b =
+        Pose(LogSO3(Eigen::Matrix3d(a.linear() * ExpSO3(omega))), a.translation() + velocity);
+    Eigen::Isometry3d c =
+        Pose(LogSO3(Eigen::Matrix3d(b.linear() * ExpSO3(omega))), b.translation() + velocity);
+    PoseParameters pa = ToPoseParameters(a), pb = ToPoseParameters(b), pc = ToPoseParameters(c);
+    const double* parameters[] = {pa.data(), pb.data(), pc.data()};
+    Vector6d residual;
+    ASSERT_TRUE(cost.Evaluate(parameters, residual.data(), nullptr));
+    EXPECT_LT(residual.cwiseAbs().maxCoeff(), 1e-9) << trial;
+    // The SE(3) form is not zero on this motion (the straight path bends in the body frame).
+    EXPECT_GT(VelocityChange(a, b, c, MotionPriorForm::kSe3).head<3>().norm(), 1e-3) << trial;
+
+    const Eigen::Vector3d kick_mm(0.5, -0.2, 0.1);
+    const Eigen::Vector3d kick_rad(0.002, 0.0, -0.001);
+    c = Pose(LogSO3(Eigen::Matrix3d(b.linear() * ExpSO3(omega + kick_rad))),
+             b.translation() + velocity + kick_mm);
+    pc = ToPoseParameters(c);
+    ASSERT_TRUE(cost.Evaluate(parameters, residual.data(), nullptr));
+    Vector6d expected;
+    expected << -kick_mm, -kick_rad;
+    expected = TestWeights().cwiseProduct(expected);
+    EXPECT_LT((residual - expected).cwiseAbs().maxCoeff(), 1e-7) << trial;
+  }
+}
+
+// r = W·(ξ₁ − ξ₂) is zero on a constant-velocity screw motion (any velocity, any start pose)
+// and equals W times the change of body twist otherwise.
+TEST(ConstantVelocityCostTest, ZeroOnConstantVelocityAndWeightedVelocityChangeOtherwise) {
+  const ConstantVelocityCost cost(TestWeights());
+  std::mt19937 rng(31);
+  for (int trial = 0; trial < 5; ++trial) {
+    Vector6d velocity;
+    velocity << 5.0 * RandomUnit(rng), 0.1 * RandomUnit(rng);
+    const Eigen::Isometry3d a = Pose(2.5 * RandomUnit(rng), 400.0 * RandomUnit(rng));
+    const Eigen::Isometry3d b = a * ExpSE3(velocity);
+    const Eigen::Isometry3d c = b * ExpSE3(velocity);
+    PoseParameters pa = ToPoseParameters(a), pb = ToPoseParameters(b), pc = ToPoseParameters(c);
+    const double* parameters[] = {pa.data(), pb.data(), pc.data()};
+    Vector6d residual;
+    ASSERT_TRUE(cost.Evaluate(parameters, residual.data(), nullptr));
+    EXPECT_LT(residual.cwiseAbs().maxCoeff(), 1e-9) << trial;
+
+    Vector6d kick;
+    kick << 0.5, -0.2, 0.1, 0.002, 0.0, -0.001;
+    const Eigen::Isometry3d c_kicked = b * ExpSE3(velocity + kick);
+    pc = ToPoseParameters(c_kicked);
+    ASSERT_TRUE(cost.Evaluate(parameters, residual.data(), nullptr));
+    const Vector6d expected = -TestWeights().cwiseProduct(kick);
+    EXPECT_LT((residual - expected).cwiseAbs().maxCoeff(), 1e-8) << trial;
+    EXPECT_LT((VelocityChange(a, b, c_kicked) + kick).cwiseAbs().maxCoeff(), 1e-10) << trial;
+  }
+}
+
+}  // namespace
+}  // namespace bcot
