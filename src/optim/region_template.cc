@@ -93,17 +93,7 @@ StatusOr<RegionTemplate> BuildRegionTemplate(const RayCaster& caster, const Came
                                              const Silhouette& silhouette,
                                              const RegionTemplateOptions& options) {
   BCOT_RETURN_IF_ERROR(options.Validate());
-  BCOT_RETURN_IF_ERROR(camera.Validate());
-  if (image.cols != camera.width || image.rows != camera.height) {
-    return Status::InvalidInput(fmt::format("camera '{}': image is {}x{}, camera expects {}x{}",
-                                            camera.name, image.cols, image.rows, camera.width,
-                                            camera.height));
-  }
-  if (silhouette.mask.size() != image.size()) {
-    return Status::InvalidInput(fmt::format("camera '{}': silhouette mask is {}x{}, image {}x{}",
-                                            camera.name, silhouette.mask.cols, silhouette.mask.rows,
-                                            image.cols, image.rows));
-  }
+  BCOT_RETURN_IF_ERROR(CheckSilhouetteInputs(camera, image, silhouette));
   RegionTemplate result;
   result.rig_from_objcentre = rig_from_objcentre;
   const std::vector<ContourPoint>& contour = silhouette.contour;

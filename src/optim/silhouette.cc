@@ -1,6 +1,24 @@
 #include "bcot/optim/silhouette.h"
 
+#include <fmt/format.h>
+
 namespace bcot {
+
+Status CheckSilhouetteInputs(const Camera& camera, const cv::Mat3b& image,
+                             const Silhouette& silhouette) {
+  BCOT_RETURN_IF_ERROR(camera.Validate());
+  if (image.cols != camera.width || image.rows != camera.height) {
+    return Status::InvalidInput(fmt::format("camera '{}': image is {}x{}, camera expects {}x{}",
+                                            camera.name, image.cols, image.rows, camera.width,
+                                            camera.height));
+  }
+  if (silhouette.mask.size() != image.size()) {
+    return Status::InvalidInput(fmt::format("camera '{}': silhouette mask is {}x{}, image {}x{}",
+                                            camera.name, silhouette.mask.cols, silhouette.mask.rows,
+                                            image.cols, image.rows));
+  }
+  return Status::Ok();
+}
 
 Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
                             const Eigen::Isometry3d& cam_from_template,

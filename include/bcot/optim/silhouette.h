@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bcot/core/camera.h"
+#include "bcot/core/status.h"
 #include "bcot/render/ray_caster.h"
 
 namespace bcot {
@@ -30,5 +31,11 @@ struct Silhouette {
 Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
                             const Eigen::Isometry3d& cam_from_template,
                             const ContourOptions& contour_options = {});
+
+// Checks what the templates built on a silhouette need: a valid camera, an image of the
+// camera's size and a mask of the image's size (kInvalidConfig / kInvalidInput naming the
+// camera).
+Status CheckSilhouetteInputs(const Camera& camera, const cv::Mat3b& image,
+                             const Silhouette& silhouette);
 
 }  // namespace bcot
