@@ -1,20 +1,20 @@
 #include "bcot/pipeline/synthesizer.h"
 
-#include <Eigen/Dense>
-#include <algorithm>
-#include <cstdio>
-#include <limits>
-#include <cmath>
-#include <filesystem>
-#include <mutex>
-#include <optional>
-#include <utility>
-
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <mutex>
+#include <opencv2/imgcodecs.hpp>
+#include <optional>
+#include <utility>
 
 #include "bcot/core/file_util.h"
 #include "bcot/core/object_io.h"
@@ -118,7 +118,8 @@ Eigen::Vector3f ShadeSample(const ShadedBody& body, const RenderedView& view, in
   Eigen::Vector3f normal = geometric;
   if (triangle >= 0 && triangle < static_cast<int>(body.triangles.size())) {
     const TriangleShading& s = body.triangles[triangle];
-    Eigen::Vector3f smooth = cam_from_object_rotation * ShadingNormal(s, Eigen::Vector3f(p[0], p[1], p[2]));
+    Eigen::Vector3f smooth =
+        cam_from_object_rotation * ShadingNormal(s, Eigen::Vector3f(p[0], p[1], p[2]));
     if ((cam_from_object_rotation * s.face).dot(geometric) < 0.0f) smooth = -smooth;
     normal = smooth;
   }
@@ -167,7 +168,7 @@ struct SynthWorld::Impl {
   ShadedBody object;
   std::string object_name;
   double unit_to_mm = 1.0;
-  std::string mesh_source;   // file copied into the sequence; empty = built-in
+  std::string mesh_source;  // file copied into the sequence; empty = built-in
   std::string model_extension = ".obj";
   std::vector<ShadedBody> distractors;
   std::vector<Eigen::Isometry3d> world_from_distractor;
@@ -211,8 +212,8 @@ ViewState SynthWorld::Impl::MakeViewState(int view, double t) const {
   s.cam_from_world = motion->CamFromWorld(view, t);
   s.world_from_cam = s.cam_from_world.inverse();
   s.cam_from_object = s.cam_from_world * motion->WorldFromObject(t);
-  s.object_roi = ClipToImage(object.caster->ProjectedBoundingBox(*s.camera, s.cam_from_object, 2),
-                             *s.camera);
+  s.object_roi =
+      ClipToImage(object.caster->ProjectedBoundingBox(*s.camera, s.cam_from_object, 2), *s.camera);
   for (size_t i = 0; i < distractors.size(); ++i) {
     s.cam_from_distractor.push_back(s.cam_from_world * world_from_distractor[i]);
     s.distractor_roi.push_back(ClipToImage(
@@ -233,8 +234,8 @@ ViewState SynthWorld::Impl::MakeViewState(int view, double t) const {
   return s;
 }
 
-void SynthWorld::Impl::RenderRegion(const ViewState& state, int view, const cv::Rect& region,
-                                    int n, bool include_object, cv::Mat3f* radiance,
+void SynthWorld::Impl::RenderRegion(const ViewState& state, int view, const cv::Rect& region, int n,
+                                    bool include_object, cv::Mat3f* radiance,
                                     cv::Mat1f* coverage) const {
   const Camera& camera = *state.camera;
   RenderOptions render_options;
@@ -334,8 +335,8 @@ void SynthWorld::Impl::RenderRegion(const ViewState& state, int view, const cv::
                                 distractor_rotation[best], state.light_in_cam, point_in_cam);
           } else if (best == -2) {
             const Eigen::Vector3d point = camera_centre + plane_depth * ray_in_world;
-            const float lambert = std::max(
-                0.0f, plane->normal.cast<float>().dot(state.light_in_world.to_light));
+            const float lambert =
+                std::max(0.0f, plane->normal.cast<float>().dot(state.light_in_world.to_light));
             color = plane->Albedo(point) *
                     (state.light_in_world.ambient + state.light_in_world.intensity * lambert);
           } else {
@@ -408,8 +409,7 @@ cv::Mat3b SynthWorld::RenderFrame(int view, int frame, cv::Mat1f* coverage) cons
   cv::Mat3f radiance;
   cv::Mat1f cover;
   for (int j = 0; j < k; ++j) {
-    const double t =
-        k == 1 ? frame : frame + o.sensor.exposure_fraction * ((j + 0.5) / k - 0.5);
+    const double t = k == 1 ? frame : frame + o.sensor.exposure_fraction * ((j + 0.5) / k - 0.5);
     SynthViewRender render = RenderView(view, t);
     if (j == 0) {
       radiance = render.radiance;
@@ -463,7 +463,8 @@ std::vector<Placement> PlaceDistractors(const SynthOptions& options,
   std::vector<std::vector<Eigen::Vector3d>> camera_centres(cameras.size());
   for (size_t c = 0; c < cameras.size(); ++c) {
     for (int f = 0; f < num_frames; f += frame_step) {
-      camera_centres[c].push_back(motion.CamFromWorld(static_cast<int>(c), f).inverse().translation());
+      camera_centres[c].push_back(
+          motion.CamFromWorld(static_cast<int>(c), f).inverse().translation());
     }
   }
   const double distance = options.cameras.distance_mm;
@@ -475,12 +476,13 @@ std::vector<Placement> PlaceDistractors(const SynthOptions& options,
     } else {
       const int kind = rng->UniformInt(0, 2);
       if (kind == 0) {
-        shape = MakeBoxMesh({rng->Uniform(0.3, 1.0), rng->Uniform(0.3, 1.0), rng->Uniform(0.3, 1.0)});
+        shape =
+            MakeBoxMesh({rng->Uniform(0.3, 1.0), rng->Uniform(0.3, 1.0), rng->Uniform(0.3, 1.0)});
       } else if (kind == 1) {
         shape = MakeCylinderMesh(rng->Uniform(0.15, 0.5), rng->Uniform(0.4, 1.0), 48);
       } else {
-        shape = MakeEllipsoidMesh({rng->Uniform(0.3, 0.5), rng->Uniform(0.3, 0.5), rng->Uniform(0.2, 0.5)},
-                                  16, 32);
+        shape = MakeEllipsoidMesh(
+            {rng->Uniform(0.3, 0.5), rng->Uniform(0.3, 0.5), rng->Uniform(0.2, 0.5)}, 16, 32);
       }
     }
     const double size = rng->Uniform(d.size_min_mm, d.size_max_mm);
@@ -530,8 +532,8 @@ std::vector<Placement> PlaceDistractors(const SynthOptions& options,
           const Eigen::Vector3d to_target = -eye;
           const double target_dist = to_target.norm();
           if (dist - radius > target_dist + workspace_reach_mm) continue;  // behind it
-          const double angle = std::acos(std::clamp(
-              to_object.dot(to_target) / (dist * target_dist), -1.0, 1.0));
+          const double angle =
+              std::acos(std::clamp(to_object.dot(to_target) / (dist * target_dist), -1.0, 1.0));
           const double clearance = std::asin(std::min(1.0, workspace_reach_mm / target_dist)) +
                                    std::asin(std::min(1.0, radius / dist));
           if (angle < clearance) {
@@ -557,7 +559,8 @@ std::vector<Placement> PlaceDistractors(const SynthOptions& options,
 // the target, texture upright in the image and spanning 1.5× the frame-0 field of view.
 StatusOr<TexturedPlane> MakeBackdrop(const SynthOptions& options, int view,
                                      const SynthCamera& camera,
-                                     const Eigen::Isometry3d& world_from_cam, int image_view_index) {
+                                     const Eigen::Isometry3d& world_from_cam,
+                                     int image_view_index) {
   const SynthOptions::Background& b = options.background;
   const std::string& kind = b.kinds[view % b.kinds.size()];
   const double along = options.cameras.distance_mm + b.backdrop_distance_mm;
@@ -631,7 +634,8 @@ StatusOr<std::unique_ptr<SynthWorld>> SynthWorld::Create(const SynthOptions& opt
   // Cameras and motion.
   w->cameras = MakeSynthCameras(options.cameras);
   w->rig = MakeSynthRig(w->cameras);
-  BCOT_ASSIGN_OR_RETURN(SynthMotion motion, SynthMotion::Create(options, w->cameras, *w->object_mesh));
+  BCOT_ASSIGN_OR_RETURN(SynthMotion motion,
+                        SynthMotion::Create(options, w->cameras, *w->object_mesh));
   w->motion = std::move(motion);
   BCOT_RETURN_IF_ERROR(CheckObjectInViews(*w->motion, w->cameras, *w->object_mesh,
                                           options.motion.num_frames,
@@ -639,8 +643,8 @@ StatusOr<std::unique_ptr<SynthWorld>> SynthWorld::Create(const SynthOptions& opt
   const double r = w->motion->workspace_radius_mm();
   const double object_radius = w->motion->object_radius_mm();
   const double centre_reach = options.motion.mode == "rotate" ? 0.0
-                              : options.motion.mode == "rig" ? 0.3 * r
-                                                             : r;
+                              : options.motion.mode == "rig"  ? 0.3 * r
+                                                              : r;
   const double reach = centre_reach + object_radius;
   const double look_reach = (options.motion.mode == "rig" ? r : centre_reach) + object_radius;
   if (options.background.backdrop_distance_mm <= look_reach) {
@@ -653,7 +657,8 @@ StatusOr<std::unique_ptr<SynthWorld>> SynthWorld::Create(const SynthOptions& opt
   // Backgrounds.
   int image_views = 0;
   for (size_t view = 0; view < w->cameras.size(); ++view) {
-    const Eigen::Isometry3d world_from_cam = w->motion->CamFromWorld(static_cast<int>(view), 0).inverse();
+    const Eigen::Isometry3d world_from_cam =
+        w->motion->CamFromWorld(static_cast<int>(view), 0).inverse();
     BCOT_ASSIGN_OR_RETURN(TexturedPlane backdrop,
                           MakeBackdrop(options, static_cast<int>(view), w->cameras[view],
                                        world_from_cam, image_views));
@@ -681,16 +686,18 @@ StatusOr<std::unique_ptr<SynthWorld>> SynthWorld::Create(const SynthOptions& opt
     sources.push_back(std::move(mesh));
   }
   SynthRng distractor_rng(MixSeed(static_cast<uint64_t>(options.seed), 2000));
-  std::vector<Placement> placements = PlaceDistractors(options, sources, w->cameras, *w->motion,
-                                                       reach, ground_z, &distractor_rng);
+  std::vector<Placement> placements =
+      PlaceDistractors(options, sources, w->cameras, *w->motion, reach, ground_z, &distractor_rng);
   for (Placement& placement : placements) {
     SurfaceMaterial m;
-    const Eigen::Vector3d rgb = distractor_rng.Uniform() < options.distractors.similar_color_fraction
-                                    ? Eigen::Vector3d(o.color_rgb[0], o.color_rgb[1], o.color_rgb[2]) *
-                                          distractor_rng.Uniform(0.8, 1.1)
-                                    : RandomColor255(&distractor_rng);
+    const Eigen::Vector3d rgb =
+        distractor_rng.Uniform() < options.distractors.similar_color_fraction
+            ? Eigen::Vector3d(o.color_rgb[0], o.color_rgb[1], o.color_rgb[2]) *
+                  distractor_rng.Uniform(0.8, 1.1)
+            : RandomColor255(&distractor_rng);
     m.albedo = SrgbToLinear({std::clamp(rgb[0], 0.0, 255.0), std::clamp(rgb[1], 0.0, 255.0),
-                             std::clamp(rgb[2], 0.0, 255.0)}) * 0.85f;
+                             std::clamp(rgb[2], 0.0, 255.0)}) *
+               0.85f;
     m.specular = static_cast<float>(distractor_rng.Uniform(0.0, 0.3));
     m.shininess = static_cast<float>(distractor_rng.Uniform(10.0, 60.0));
     w->distractors.push_back(MakeBody(placement.mesh, 35.0, m));
@@ -738,8 +745,8 @@ Status Synthesize(const SynthOptions& options, const std::string& out_dir,
     return Status::InvalidConfig(
         fmt::format("{}: output directory exists and is not empty", out_dir));
   }
-  const int threads = options.render.threads > 0 ? options.render.threads
-                                                 : tbb::task_arena::automatic;
+  const int threads =
+      options.render.threads > 0 ? options.render.threads : tbb::task_arena::automatic;
   tbb::task_arena arena(threads);
   Status status;
   arena.execute([&] {
@@ -757,29 +764,32 @@ Status Synthesize(const SynthOptions& options, const std::string& out_dir,
     std::mutex mutex;
     Status frame_status;
     int done = 0;
-    tbb::parallel_for(0, num_frames, [&](int frame) {
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (!frame_status.ok()) return;
-      }
-      Status local;
-      for (int view = 0; view < rig.size() && local.ok(); ++view) {
-        const std::string& name = rig[view].camera.name;
-        cv::Mat1f coverage;
-        const cv::Mat3b image = world.RenderFrame(view, frame, &coverage);
-        local = WriteImage(root + name + "/" + FrameName(frame) + ".png", image);
-        if (local.ok() && options.output.write_coverage) {
-          cv::Mat1b coverage8;
-          coverage.convertTo(coverage8, CV_8U, 255.0);
-          local = WriteImage(root + "gt/" + name + "/coverage_" + FrameName(frame) + ".png",
-                             coverage8);
-        }
-      }
-      std::lock_guard<std::mutex> lock(mutex);
-      if (!local.ok() && frame_status.ok()) frame_status = local;
-      ++done;
-      if (progress) progress(done, num_frames);
-    }, tbb::simple_partitioner());
+    tbb::parallel_for(
+        0, num_frames,
+        [&](int frame) {
+          {
+            std::lock_guard<std::mutex> lock(mutex);
+            if (!frame_status.ok()) return;
+          }
+          Status local;
+          for (int view = 0; view < rig.size() && local.ok(); ++view) {
+            const std::string& name = rig[view].camera.name;
+            cv::Mat1f coverage;
+            const cv::Mat3b image = world.RenderFrame(view, frame, &coverage);
+            local = WriteImage(root + name + "/" + FrameName(frame) + ".png", image);
+            if (local.ok() && options.output.write_coverage) {
+              cv::Mat1b coverage8;
+              coverage.convertTo(coverage8, CV_8U, 255.0);
+              local = WriteImage(root + "gt/" + name + "/coverage_" + FrameName(frame) + ".png",
+                                 coverage8);
+            }
+          }
+          std::lock_guard<std::mutex> lock(mutex);
+          if (!local.ok() && frame_status.ok()) frame_status = local;
+          ++done;
+          if (progress) progress(done, num_frames);
+        },
+        tbb::simple_partitioner());
     if (!frame_status.ok()) {
       status = frame_status;
       return;
@@ -806,15 +816,19 @@ Status Synthesize(const SynthOptions& options, const std::string& out_dir,
       run(WritePoseFile(root + "gt/" + rig[view].camera.name + "/pose.txt", cam_from_object));
     }
 
-    // init_pose.txt: frame-0 GT perturbed by exactly the configured magnitudes.
+    // init_pose.txt: frame-0 GT perturbed by exactly the configured magnitudes, the rotation
+    // about the object's bounding-box centre (not the mesh origin, which may lie far outside
+    // the object and would turn a small rotation into a large displacement).
     SynthRng rng(MixSeed(static_cast<uint64_t>(options.seed), 3000));
     const Eigen::Vector3d axis = rng.UnitVector();
     const Eigen::Vector3d direction = rng.UnitVector();
-    Eigen::Isometry3d init = rig_from_object.at(0);
-    init.linear() = NearestRotation(ExpSO3(options.init.rotation_deg * kDegToRad * axis) *
-                                    init.linear());
-    init.translation() += options.init.translation_mm * direction;
-    run(WritePoseFile(root + "init_pose.txt", {init}));
+    const Eigen::Isometry3d objcentre_from_template = world.object_mesh().objcentre_from_template();
+    Eigen::Isometry3d rig_from_objcentre =
+        rig_from_object.at(0) * objcentre_from_template.inverse();
+    rig_from_objcentre.linear() = NearestRotation(
+        ExpSO3(options.init.rotation_deg * kDegToRad * axis) * rig_from_objcentre.linear());
+    rig_from_objcentre.translation() += options.init.translation_mm * direction;
+    run(WritePoseFile(root + "init_pose.txt", {rig_from_objcentre * objcentre_from_template}));
 
     // timestamps.csv: synchronized cameras at the configured frame rate.
     std::string csv = "frame";

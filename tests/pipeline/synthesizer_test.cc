@@ -14,6 +14,7 @@
 #include "bcot/core/se3.h"
 #include "bcot/core/sequence.h"
 #include "bcot/pipeline/synth_scene.h"
+#include "bcot/render/mesh.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -276,8 +277,8 @@ TEST(SynthesizerTest, CoverageEdgesMatchTheGroundTruthSilhouetteAt1280) {
       EXPECT_LT(mean_abs, 0.1) << "view " << view << " frame " << frame;
       EXPECT_LT(std::abs(mean), 0.03) << "view " << view << " frame " << frame;
       EXPECT_LT(std::abs(offsets[offsets.size() / 2]), 0.05);
-      std::printf("view %d frame %d: %zu edge samples, mean |offset| %.4f px, mean %.4f px\n",
-                  view, frame, offsets.size(), mean_abs, mean);
+      std::printf("view %d frame %d: %zu edge samples, mean |offset| %.4f px, mean %.4f px\n", view,
+                  frame, offsets.size(), mean_abs, mean);
     }
   }
 }
@@ -331,6 +332,20 @@ SynthOptions TinyOptions(const std::string& mode) {
   return options;
 }
 
+// init_pose.txt is off frame-0's ground truth by exactly `rotation_deg` and, at the object's
+// bounding-box centre, `translation_mm`.
+void ExpectInitPerturbation(const Sequence& sequence, const Eigen::Isometry3d& truth,
+                            double rotation_deg, double translation_mm) {
+  ASSERT_TRUE(sequence.init_rig_from_object.has_value());
+  const StatusOr<Mesh> mesh = Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm);
+  ASSERT_TRUE(mesh.ok()) << mesh.status().message();
+  const Eigen::Isometry3d template_from_objcentre = mesh->objcentre_from_template().inverse();
+  EXPECT_NEAR(test::RotationErrorDeg(*sequence.init_rig_from_object, truth), rotation_deg, 1e-6);
+  EXPECT_NEAR(test::TranslationErrorMm(*sequence.init_rig_from_object * template_from_objcentre,
+                                       truth * template_from_objcentre),
+              translation_mm, 1e-6);
+}
+
 std::string ReadBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream buffer;
@@ -375,11 +390,7 @@ TEST(SynthesizerTest, WritesAConsistentLoadableSequence) {
     EXPECT_TRUE(std::filesystem::exists(out + "/gt/" + name + "/coverage_000003.png"));
   }
   // init_pose = GT frame 0 off by exactly the configured magnitudes.
-  ASSERT_TRUE(sequence->init_rig_from_object.has_value());
-  EXPECT_NEAR(test::RotationErrorDeg(*sequence->init_rig_from_object, (*rig_from_object)[0]),
-              4.0, 1e-6);
-  EXPECT_NEAR(test::TranslationErrorMm(*sequence->init_rig_from_object, (*rig_from_object)[0]),
-              6.0, 1e-6);
+  ExpectInitPerturbation(*sequence, (*rig_from_object)[0], 4.0, 6.0);
   // The resolved config reads back to the same options.
   const StatusOr<SynthOptions> resolved = ReadSynthOptions(out + "/synth.resolved.yaml");
   ASSERT_TRUE(resolved.ok()) << resolved.status().message();
@@ -455,4 +466,34 @@ TEST(SynthesizerTest, RigMotionMovesTheBackgroundButNotTheRig) {
 }
 
 }  // namespace
+TEST(SynthesizerTest, PerturbsTheInitPoseAboutTheObjectCentreOfAnOffCentreMesh) {
+  // A 100 mm cube whose file origin lies 900 mm away: a rotation about the origin would move
+  // the object by ~80 mm for 5°.
+  test::TempDir dir;
+  const std::string mesh_path = dir.File("far_cube.obj");
+  std::string obj;
+  for (int corner = 0; corner < 8; ++corner) {
+    obj += "v " + std::to_string(900 + 100 * (corner & 1)) + " " +
+           std::to_string(100 * ((corner >> 1) & 1)) + " " + std::to_string(100 * (corner >> 2)) +
+           "\n";
+  }
+  obj += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+  ASSERT_TRUE(WriteFileAtomic(mesh_path, obj).ok());
+  SynthOptions options = TinyOptions("free");
+  options.object.mesh = mesh_path;
+  options.motion.num_frames = 1;
+  options.cameras.cone_angles_deg = {};
+  options.output.write_coverage = false;
+  options.init.rotation_deg = 5.0;
+  options.init.translation_mm = 2.0;
+  const std::string out = dir.File("seq");
+  ASSERT_TRUE(Synthesize(options, out).ok());
+  const StatusOr<Sequence> sequence = LoadSequence(out);
+  ASSERT_TRUE(sequence.ok()) << sequence.status().message();
+  const StatusOr<std::vector<Eigen::Isometry3d>> truth =
+      ReadPoseFile(out + "/gt/rig_from_object.txt");
+  ASSERT_TRUE(truth.ok());
+  ExpectInitPerturbation(*sequence, (*truth)[0], 5.0, 2.0);
+}
+
 }  // namespace bcot
