@@ -16,6 +16,11 @@ Status ColorModelOptions::Validate() const {
   if (kind != ColorModelKind::kGlobal && kind != ColorModelKind::kLocal) {
     violations.push_back(fmt::format("kind = {}, must be global or local", static_cast<int>(kind)));
   }
+  if (refine_kind.has_value() && *refine_kind != ColorModelKind::kGlobal &&
+      *refine_kind != ColorModelKind::kLocal) {
+    violations.push_back(fmt::format("refine_kind = {}, must be same, global or local",
+                                     static_cast<int>(*refine_kind)));
+  }
   if (bins_per_channel < 1 || bins_per_channel > 256 || 256 % bins_per_channel != 0) {
     violations.push_back(fmt::format("bins_per_channel = {}, must divide 256 (1, 2, 4, ..., 256)",
                                      bins_per_channel));
@@ -249,6 +254,13 @@ std::vector<double> LocalColorModel::ForegroundPosteriors(
     if (count > 0) posteriors[p] = sum / count;
   }
   return posteriors;
+}
+
+ColorModelOptions RefineColorModelOptions(const ColorModelOptions& options) {
+  ColorModelOptions refine = options;
+  if (options.refine_kind.has_value()) refine.kind = *options.refine_kind;
+  refine.refine_kind.reset();
+  return refine;
 }
 
 std::unique_ptr<ColorModel> MakeColorModel(const ColorModelOptions& options,

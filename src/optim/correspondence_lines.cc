@@ -160,8 +160,7 @@ StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
   for (int j = 0; j < num_candidates; ++j) {
     // Contour samples are evenly spaced along every contour: evenly spaced indices are evenly
     // spaced in arc length.
-    const ContourPoint& point =
-        contour[static_cast<size_t>((j + 0.5) * count / num_candidates)];
+    const ContourPoint& point = contour[static_cast<size_t>((j + 0.5) * count / num_candidates)];
     ++result.candidates;
     if (!camera.InImage(point.pixel)) {
       ++result.rejected_off_image;

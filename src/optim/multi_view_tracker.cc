@@ -40,16 +40,26 @@ StatusOr<std::unique_ptr<MultiViewTracker>> MultiViewTracker::Create(
                                                view.camera.name, view.weight));
     }
   }
-  return std::unique_ptr<MultiViewTracker>(
-      new MultiViewTracker(caster, std::move(views), options));
+  return std::unique_ptr<MultiViewTracker>(new MultiViewTracker(caster, std::move(views), options));
 }
 
 MultiViewTracker::MultiViewTracker(const RayCaster& caster, std::vector<TrackedView> views,
                                    const MultiViewTrackerOptions& options)
-    : caster_(caster), views_(std::move(views)), options_(options), problem_(caster, options.frame) {
-  for (size_t v = 0; v < views_.size(); ++v) {
-    color_models_.push_back(MakeColorModel(options_.color, caster_.mesh().diameter()));
-  }
+    : caster_(caster),
+      views_(std::move(views)),
+      options_(options),
+      problem_(caster, options.frame) {
+  color_models_.resize(views_.size());
+  refine_color_models_.resize(views_.size());
+  for (size_t v = 0; v < views_.size(); ++v) ResetColorModels(v);
+}
+
+void MultiViewTracker::ResetColorModels(size_t view) {
+  const double diameter = caster_.mesh().diameter();
+  color_models_[view] = MakeColorModel(options_.color, diameter);
+  const ColorModelOptions refine = RefineColorModelOptions(options_.color);
+  refine_color_models_[view] =
+      refine.kind != options_.color.kind ? MakeColorModel(refine, diameter) : nullptr;
 }
 
 Status MultiViewTracker::CheckImages(const std::vector<cv::Mat3b>& images) const {
@@ -72,22 +82,24 @@ void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
                                    const Eigen::Isometry3d& rig_from_objcentre, bool fresh) {
   const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
   for (size_t v = 0; v < views_.size(); ++v) {
-    if (fresh) color_models_[v] = MakeColorModel(options_.color, caster_.mesh().diameter());
-    const Silhouette silhouette = RenderSilhouette(
-        caster_, views_[v].camera,
-        views_[v].cam_from_rig * rig_from_objcentre * objcentre_from_template,
-        options_.frame.region.contour);
+    if (fresh) ResetColorModels(v);
+    const Silhouette silhouette =
+        RenderSilhouette(caster_, views_[v].camera,
+                         views_[v].cam_from_rig * rig_from_objcentre * objcentre_from_template,
+                         options_.frame.region.contour);
     color_models_[v]->Update(images[v], silhouette);
+    if (refine_color_models_[v] != nullptr) refine_color_models_[v]->Update(images[v], silhouette);
   }
 }
 
 FrameSummary MultiViewTracker::Solve(const std::vector<cv::Mat3b>& images,
                                      Eigen::Isometry3d* rig_from_objcentre,
-                                     std::vector<ViewLinearisation>* linearisations) {
+                                     std::vector<ViewLinearisation>* linearisations, bool refine) {
   std::vector<FrameView> frame_views;
   for (size_t v = 0; v < views_.size(); ++v) {
     frame_views.push_back({&views_[v].camera, views_[v].cam_from_rig, &images[v],
-                           color_models_[v].get(), views_[v].weight});
+                           color_models_[v].get(), views_[v].weight,
+                           refine ? refine_color_models_[v].get() : nullptr});
   }
   return problem_.Solve(frame_views, rig_from_objcentre, linearisations);
 }
@@ -106,10 +118,15 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
   BCOT_CHECK(rig_from_objcentre != nullptr);
   BCOT_RETURN_IF_ERROR(CheckImages(images));
   FrameSummary summary;
+  const bool has_refinement_models = refine_color_models_.front() != nullptr;
   for (int pass = 0; pass < options_.bootstrap_passes; ++pass) {
     LearnColors(images, *rig_from_objcentre, /*fresh=*/true);
-    summary = Solve(images, rig_from_objcentre, linearisations);
+    summary = Solve(images, rig_from_objcentre, linearisations, /*refine=*/false);
     if (!summary.usable()) break;
+  }
+  if (has_refinement_models && summary.usable()) {
+    LearnColors(images, *rig_from_objcentre, /*fresh=*/true);
+    summary = Solve(images, rig_from_objcentre, linearisations, /*refine=*/true);
   }
   previous_rig_from_objcentre_.reset();
   return summary;
@@ -125,7 +142,7 @@ StatusOr<FrameSummary> MultiViewTracker::Track(const std::vector<cv::Mat3b>& ima
     *rig_from_objcentre =
         PredictPose(*previous_rig_from_objcentre_, last, options_.velocity_prediction);
   }
-  FrameSummary summary = Solve(images, rig_from_objcentre, linearisations);
+  FrameSummary summary = Solve(images, rig_from_objcentre, linearisations, /*refine=*/true);
   if (summary.usable()) {
     LearnColors(images, *rig_from_objcentre, /*fresh=*/false);
     previous_rig_from_objcentre_ = last;

@@ -64,8 +64,8 @@ bool Se3Manifold::PlusJacobian(const double* x, double* jacobian) const {
 bool Se3Manifold::Minus(const double* y, const double* x, double* y_minus_x) const {
   const Eigen::Isometry3d x_from_y = FromPoseParameters(x).inverse() * FromPoseParameters(y);
   // Take the rotation log from the quaternions directly (exact near π, no matrix round trip).
-  const Eigen::Quaterniond q_rel = QuaternionOf(x).normalized().conjugate() *
-                                   QuaternionOf(y).normalized();
+  const Eigen::Quaterniond q_rel =
+      QuaternionOf(x).normalized().conjugate() * QuaternionOf(y).normalized();
   const Eigen::Vector3d phi = LogSO3(q_rel);
   Eigen::Map<Eigen::Vector3d> rho_out(y_minus_x);
   Eigen::Map<Eigen::Vector3d> phi_out(y_minus_x + 3);

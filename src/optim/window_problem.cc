@@ -103,14 +103,14 @@ WindowSummary WindowProblem::Solve(
       ++summary.free_frames;
       for (const ViewLinearisation& view : *frame_views[t - first]) {
         if (view.region_template != nullptr) {
-          AddRegionResidualBlocks(view.camera, view.cam_from_rig, view.region_template,
-                                  view.cost, block, &problem);
+          AddRegionResidualBlocks(view.camera, view.cam_from_rig, view.region_template, view.cost,
+                                  block, &problem);
         }
         if (view.lines != nullptr) {
-          problem.AddResidualBlock(new CorrespondenceLineCostFunction(
-                                       view.camera, view.cam_from_rig, view.lines,
-                                       view.line_weight),
-                                   nullptr, block);
+          problem.AddResidualBlock(
+              new CorrespondenceLineCostFunction(view.camera, view.cam_from_rig, view.lines,
+                                                 view.line_weight),
+              nullptr, block);
         }
       }
     } else {

@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <utility>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bcot/core/yaml_util.h"
@@ -82,8 +82,8 @@ Status LocateViolations(const Status& status, const YamlMap& map) {
       }
     }
     const std::string value_and_rule = piece.substr(field.size());
-    located.push_back(fmt::format("{}: {}.{}{}", map.Location(key), map.path(), key,
-                                  value_and_rule));
+    located.push_back(
+        fmt::format("{}: {}.{}{}", map.Location(key), map.path(), key, value_and_rule));
   }
   std::string message = located[0];
   for (size_t i = 1; i < located.size(); ++i) message += "; " + located[i];
@@ -119,8 +119,7 @@ Status GetEnum(YamlMap& map, const std::string& key, const std::vector<std::stri
   return map.Error(key, fmt::format("'{}' is not one of {}", value, choices));
 }
 
-Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
-                 AnnotateOptions* o) {
+Status ParseInto(const YAML::Node& root_node, const std::string& source_name, AnnotateOptions* o) {
   if (!root_node.IsDefined() || root_node.IsNull()) return Status::Ok();
   YamlMap root(root_node, source_name, "", StatusCode::kInvalidConfig);
   BCOT_RETURN_IF_ERROR(root.Check());
@@ -202,6 +201,14 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
         int kind = static_cast<int>(color.kind);
         BCOT_RETURN_IF_ERROR(GetEnum(m, "kind", {"global", "local"}, &kind));
         color.kind = static_cast<ColorModelKind>(kind);
+        int refine_kind =
+            color.refine_kind.has_value() ? 1 + static_cast<int>(*color.refine_kind) : 0;
+        BCOT_RETURN_IF_ERROR(GetEnum(m, "refine_kind", {"same", "global", "local"}, &refine_kind));
+        if (refine_kind == 0) {
+          color.refine_kind.reset();
+        } else {
+          color.refine_kind = static_cast<ColorModelKind>(refine_kind - 1);
+        }
         BCOT_RETURN_IF_ERROR(m.GetOptional("bins_per_channel", &color.bins_per_channel));
         BCOT_RETURN_IF_ERROR(
             m.GetOptional("learning_rate_foreground", &color.learning_rate_foreground));
@@ -220,8 +227,7 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
   BCOT_RETURN_IF_ERROR(ParseSection(
       root, "tracker",
       [&](YamlMap& m) -> Status {
-        BCOT_RETURN_IF_ERROR(
-            m.GetOptional("velocity_prediction", &o->tracker.velocity_prediction));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("velocity_prediction", &o->tracker.velocity_prediction));
         return m.GetOptional("bootstrap_passes", &o->tracker.bootstrap_passes);
       },
       [&]() -> Status {
@@ -358,6 +364,7 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
   line("weight", number(f.lines.weight));
   section("color");
   line("kind", KindName(c.kind));
+  line("refine_kind", c.refine_kind.has_value() ? KindName(*c.refine_kind) : "same");
   line("bins_per_channel", number(c.bins_per_channel));
   line("learning_rate_foreground", number(c.learning_rate_foreground));
   line("learning_rate_background", number(c.learning_rate_background));
@@ -379,10 +386,11 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
   line("overlap", number(w.overlap));
   line("iterations", number(w.iterations));
   line("prior", w.prior == MotionPriorForm::kSe3 ? "se3" : "decoupled");
-  line("rotation_sigma_deg", List(std::vector<double>(w.rotation_sigma_deg.begin(),
-                                                      w.rotation_sigma_deg.end()), number));
-  line("translation_sigma_mm", List(std::vector<double>(w.translation_sigma_mm.begin(),
-                                                        w.translation_sigma_mm.end()), number));
+  line("rotation_sigma_deg",
+       List(std::vector<double>(w.rotation_sigma_deg.begin(), w.rotation_sigma_deg.end()), number));
+  line("translation_sigma_mm",
+       List(std::vector<double>(w.translation_sigma_mm.begin(), w.translation_sigma_mm.end()),
+            number));
   line("robust_scale", number(w.robust_scale));
   line("num_threads", number(w.num_threads));
   return y + FormatQualityOptions(o.quality);

@@ -178,5 +178,18 @@ TEST(ColorModelFactoryTest, MakesTheRequestedKind) {
   EXPECT_NE(dynamic_cast<LocalColorModel*>(MakeColorModel(options, 100.0).get()), nullptr);
 }
 
+TEST(ColorModelFactoryTest, RefineOptionsSwitchOnlyTheKind) {
+  ColorModelOptions options;
+  options.bins_per_channel = 16;
+  options.refine_kind.reset();
+  EXPECT_EQ(RefineColorModelOptions(options).kind, ColorModelKind::kGlobal);
+  options.refine_kind = ColorModelKind::kLocal;
+  const ColorModelOptions refine = RefineColorModelOptions(options);
+  EXPECT_EQ(refine.kind, ColorModelKind::kLocal);
+  EXPECT_FALSE(refine.refine_kind.has_value());
+  EXPECT_EQ(refine.bins_per_channel, 16);
+  EXPECT_NE(dynamic_cast<LocalColorModel*>(MakeColorModel(refine, 100.0).get()), nullptr);
+}
+
 }  // namespace
 }  // namespace bcot

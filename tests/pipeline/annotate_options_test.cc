@@ -27,6 +27,7 @@ TEST(AnnotateOptionsTest, DefaultsRoundTripThroughYaml) {
   options.tracker.frame.lines.num_lines = 150;
   options.tracker.frame.lines.weight = 0.5;
   options.tracker.color.kind = ColorModelKind::kLocal;
+  options.tracker.color.refine_kind = ColorModelKind::kGlobal;
   options.views.cameras = {"left", "no"};
   options.views.weights = {1.0, 0.25};
   const std::string text = FormatAnnotateOptions(options);
@@ -38,6 +39,7 @@ TEST(AnnotateOptionsTest, DefaultsRoundTripThroughYaml) {
   EXPECT_EQ(read->tracker.frame.energy, RegionEnergy::kCombined);
   EXPECT_EQ(read->tracker.frame.lines.num_lines, 150);
   EXPECT_EQ(read->tracker.frame.lines.weight, 0.5);
+  EXPECT_EQ(read->tracker.color.refine_kind, ColorModelKind::kGlobal);
   EXPECT_EQ(read->views.cameras[1], "no");  // a string, not the YAML 1.1 boolean
   EXPECT_EQ(FormatAnnotateOptions(AnnotateOptions()),
             FormatAnnotateOptions(*ParseText(FormatAnnotateOptions(AnnotateOptions()))));
@@ -52,9 +54,11 @@ TEST(AnnotateOptionsTest, EveryShippedConfigLoads) {
   }
   EXPECT_EQ(loaded, 2);
   // annotate.yaml spells out the defaults.
-  EXPECT_EQ(FormatAnnotateOptions(*ReadAnnotateOptions(test::SourcePath("configs/annotate.yaml"), {})),
-            FormatAnnotateOptions(AnnotateOptions()));
-  EXPECT_EQ(ReadAnnotateOptions(test::SourcePath("configs/track.yaml"), {})->tracker.frame.rounds, 1);
+  EXPECT_EQ(
+      FormatAnnotateOptions(*ReadAnnotateOptions(test::SourcePath("configs/annotate.yaml"), {})),
+      FormatAnnotateOptions(AnnotateOptions()));
+  EXPECT_EQ(ReadAnnotateOptions(test::SourcePath("configs/track.yaml"), {})->tracker.frame.rounds,
+            1);
 }
 
 // Every YAML file under configs/ loads with the reader of its command. capture.yaml and
@@ -115,8 +119,7 @@ TEST(AnnotateOptionsTest, QualitySectionRoundTripsAndIsValidated) {
   ASSERT_EQ(set.status().code(), StatusCode::kInvalidConfig);
   EXPECT_THAT(set.status().message(), HasSubstr("annotate.yaml"));
   EXPECT_THAT(set.status().message(), HasSubstr("quality.search_radius_px = 0, must be > 0"));
-  const StatusOr<AnnotateOptions> type =
-      ReadAnnotateOptions("", {"quality.threshold_px=[1, 2]"});
+  const StatusOr<AnnotateOptions> type = ReadAnnotateOptions("", {"quality.threshold_px=[1, 2]"});
   ASSERT_EQ(type.status().code(), StatusCode::kInvalidConfig);
   EXPECT_THAT(type.status().message(), HasSubstr("quality.threshold_px"));
   const StatusOr<AnnotateOptions> key = ReadAnnotateOptions("", {"quality.nope=1"});
@@ -155,6 +158,11 @@ TEST(AnnotateOptionsTest, WrongTypesAndEnumsAreErrors) {
   EXPECT_THAT(form.status().message(), HasSubstr("'squared' is not one of sqrt_energy | irls"));
   EXPECT_THAT(ParseText("cost:\n  energy: sparser\n").status().message(),
               HasSubstr("'sparser' is not one of dense | sparse | combined"));
+  EXPECT_THAT(ParseText("color:\n  refine_kind: finer\n").status().message(),
+              HasSubstr("'finer' is not one of same | global | local"));
+  const StatusOr<AnnotateOptions> same = ParseText("color:\n  refine_kind: same\n");
+  ASSERT_TRUE(same.ok()) << same.status().message();
+  EXPECT_FALSE(same->tracker.color.refine_kind.has_value());
   EXPECT_THAT(ParseText("lines:\n  num_lines: 10\n  slope_px: 0\n").status().message(),
               HasSubstr("run.yaml:3: lines.slope_px = 0"));
   EXPECT_THAT(ParseText("cost:\n  energy: sparse\nlines:\n  weight: 0\n").status().message(),
@@ -165,7 +173,8 @@ TEST(AnnotateOptionsTest, WrongTypesAndEnumsAreErrors) {
 
 TEST(AnnotateOptionsTest, WindowSectionParsesAndNamesBadValues) {
   const StatusOr<AnnotateOptions> options = ParseText(
-      "window:\n  enabled: true\n  prior: se3\n  size: 12\n  overlap: 4\n  rotation_sigma_deg: [0.1, 0.2, "
+      "window:\n  enabled: true\n  prior: se3\n  size: 12\n  overlap: 4\n  rotation_sigma_deg: "
+      "[0.1, 0.2, "
       "0.3]\n  translation_sigma_mm: [1, 2, 3]\n  robust_scale: 0\n");
   ASSERT_TRUE(options.ok()) << options.status().message();
   EXPECT_TRUE(options->window.enabled);
@@ -180,14 +189,12 @@ TEST(AnnotateOptionsTest, WindowSectionParsesAndNamesBadValues) {
             FormatAnnotateOptions(*options));
   EXPECT_THAT(ParseText("window:\n  size: 8\n  overlap: 8\n").status().message(),
               HasSubstr("run.yaml:3: window.overlap = 8"));
-  EXPECT_THAT(ParseText("window:\n  size: 8\n  translation_sigma_mm: [1, 0, 1]\n")
-                  .status()
-                  .message(),
-              HasSubstr("run.yaml:3: window.translation_sigma_mm = 0 (y)"));
+  EXPECT_THAT(
+      ParseText("window:\n  size: 8\n  translation_sigma_mm: [1, 0, 1]\n").status().message(),
+      HasSubstr("run.yaml:3: window.translation_sigma_mm = 0 (y)"));
   EXPECT_THAT(ParseText("window:\n  rotation_sigma_deg: [1, 2]\n").status().message(),
               HasSubstr("run.yaml:2: window.rotation_sigma_deg: has 2 values, expected 3"));
-  EXPECT_THAT(ParseText("window:\n  enabled: maybe\n").status().message(),
-              HasSubstr("enabled"));
+  EXPECT_THAT(ParseText("window:\n  enabled: maybe\n").status().message(), HasSubstr("enabled"));
 }
 
 TEST(AnnotateOptionsTest, OverridesAreValidatedTheSameWay) {

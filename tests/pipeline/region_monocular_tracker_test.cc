@@ -20,8 +20,15 @@ TEST(RegionMonocularTrackerTest, TracksInTheTemplateFrameAndReportsALostObject) 
   const Eigen::Isometry3d objcentre_from_template = mesh.objcentre_from_template();
   Eigen::Isometry3d cam_from_objcentre =
       test::MakeCamFromObjcentre(Eigen::Vector3d(0.3, -0.5, 0.2), Eigen::Vector3d(5, -10, 500));
+  // The wrapper's frame conventions are under test here, with the single global colour model:
+  // on this scene (a pure red object on a fast-varying blue/green stripe texture) the local
+  // refinement model tracks monocularly to 0.53–0.59° instead of 0.06–0.29°, while on bcot
+  // synth scenes and real BCOT frames it is the more precise one (scripts/bench_precision.sh,
+  // scripts/bench_real_bcot.sh).
+  MultiViewTrackerOptions options;
+  options.color.refine_kind.reset();
   StatusOr<std::unique_ptr<MonocularTracker>> tracker =
-      MakeRegionTrackerFactory(MultiViewTrackerOptions())(camera, mesh);
+      MakeRegionTrackerFactory(options)(camera, mesh);
   ASSERT_TRUE(tracker.ok()) << tracker.status().message();
   ASSERT_TRUE((*tracker)
                   ->Reset(test::RenderTestImage(caster, camera, cam_from_objcentre, 1),
@@ -29,8 +36,8 @@ TEST(RegionMonocularTrackerTest, TracksInTheTemplateFrameAndReportsALostObject) 
                   .ok());
   const Eigen::Vector3d axis = Eigen::Vector3d(1.0, 0.4, -0.3).normalized();
   for (int frame = 1; frame <= 3; ++frame) {
-    cam_from_objcentre.linear() = ExpSO3(axis * 2.0 * test::kTestPi / 180.0) *
-                                  cam_from_objcentre.linear();
+    cam_from_objcentre.linear() =
+        ExpSO3(axis * 2.0 * test::kTestPi / 180.0) * cam_from_objcentre.linear();
     cam_from_objcentre.translation() += Eigen::Vector3d(4.0, 3.0, 0.0);
     const StatusOr<Eigen::Isometry3d> estimate =
         (*tracker)->Track(test::RenderTestImage(caster, camera, cam_from_objcentre, 1 + frame));
@@ -46,7 +53,8 @@ TEST(RegionMonocularTrackerTest, TracksInTheTemplateFrameAndReportsALostObject) 
                   ->Reset(test::RenderTestImage(caster, camera, cam_from_objcentre, 9),
                           far_away * objcentre_from_template)
                   .ok());
-  EXPECT_FALSE((*tracker)->Track(test::RenderTestImage(caster, camera, cam_from_objcentre, 10)).ok());
+  EXPECT_FALSE(
+      (*tracker)->Track(test::RenderTestImage(caster, camera, cam_from_objcentre, 10)).ok());
 }
 
 TEST(RegionMonocularTrackerTest, InvalidOptionsAreAConfigError) {

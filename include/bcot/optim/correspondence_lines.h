@@ -6,9 +6,9 @@
 // For a line with centre c (contour point at T0, px), outward unit normal n and model point X
 // (O_o, projecting to ≈ c at T0):
 //   samples   s_k = k·h for integer k whose segment [s_k − h/2, s_k + h/2] lies in
-//             [−inside_px, +outside_px] (h = scale_px, along n, px). Each sample's P_f is the mean of the bilinearly interpolated
-//             posteriors at h points spread over its segment [s_k − h/2, s_k + h/2), so
-//             coarse scales average the image instead of aliasing it.
+//             [−inside_px, +outside_px] (h = scale_px, along n, px). Each sample's P_f is the mean
+//             of the bilinearly interpolated posteriors at h points spread over its segment [s_k −
+//             h/2, s_k + h/2), so coarse scales average the image instead of aliasing it.
 //   hypothesis the contour sits at offset d: sample k is foreground with probability
 //             h_f(s_k − d) = ½ − α·tanh((s_k − d) / (2·slope_px)) (the smoothed step, α < ½)
 //             and background with h_b = 1 − h_f.

@@ -30,10 +30,9 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
-
-#include <opencv2/core.hpp>
 
 #include "bcot/core/camera.h"
 #include "bcot/core/status.h"
@@ -99,13 +98,15 @@ struct FrameView {
   const cv::Mat3b* image = nullptr;  // camera->width × camera->height
   const ColorModel* color_model = nullptr;
   double weight = 1.0;  // w_v >= 0 of eq. 8
+  // Posteriors of the full-resolution (level 0) rounds; null = color_model.
+  const ColorModel* refine_color_model = nullptr;
 };
 
 enum class FrameTermination {
-  kConverged,       // a round moved the pose by less than the round tolerances
-  kMaxRounds,       // every round ran
-  kNotVisible,      // no view had a single band pixel at some level: pose left as it was
-  kSolverFailure,   // Ceres reported failure or the energy was not finite: pose left as it was
+  kConverged,      // a round moved the pose by less than the round tolerances
+  kMaxRounds,      // every round ran
+  kNotVisible,     // no view had a single band pixel at some level: pose left as it was
+  kSolverFailure,  // Ceres reported failure or the energy was not finite: pose left as it was
 };
 
 const char* FrameTerminationName(FrameTermination termination);
@@ -118,14 +119,14 @@ struct FrameViewSummary {
 
 struct FrameSummary {
   FrameTermination termination = FrameTermination::kMaxRounds;
-  int rounds = 0;              // full-resolution rounds run
-  int iterations = 0;          // Ceres iterations over all levels and rounds
+  int rounds = 0;               // full-resolution rounds run
+  int iterations = 0;           // Ceres iterations over all levels and rounds
   double initial_energy = 0.0;  // Σ views, level 0 template of round 1 at its start pose
   double final_energy = 0.0;    // Σ views at the final pose, level 0 template of the last round
-  double last_round_rotation_deg = 0.0;   // pose change made by the last round
+  double last_round_rotation_deg = 0.0;  // pose change made by the last round
   double last_round_translation_mm = 0.0;
-  std::vector<FrameViewSummary> views;    // in the order of the FrameView list
-  std::string message;                    // why, when not kConverged / kMaxRounds
+  std::vector<FrameViewSummary> views;  // in the order of the FrameView list
+  std::string message;                  // why, when not kConverged / kMaxRounds
 
   // The pose is a solve result (not left unchanged by a failure).
   bool usable() const {

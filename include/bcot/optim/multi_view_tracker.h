@@ -8,7 +8,13 @@
 //                          solve }. A colour model learned at a pose several degrees off mixes
 //                          object and background colours and biases the minimum; re-learning it
 //                          at the first solution removes most of that bias (measured on the
-//                          bunny 5°/10 mm test: 1.0° → 0.03° after the second pass).
+//                          bunny 5°/10 mm test: 1.0° → 0.03° after the second pass). These
+//                          passes use the capture models (color.kind) only; with a separate
+//                          refinement model (color.refine_kind), the models are then learned
+//                          once more at the result and one more solve uses it: a local model
+//                          learned at a pose degrees off has object and background swapped
+//                          along parts of the contour and holds the pose there (measured: a
+//                          5°/10 mm start ends 2.9° / 5.4 mm off without this order).
 //   Track(images, T):      solve from T (the previous frame's pose) moved on by the motion between
 //                          the two previous frames (velocity_prediction; not after Reset or
 //                          Initialize, which forget the velocity) with the current models, then
@@ -22,10 +28,9 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
-
-#include <opencv2/core.hpp>
 
 #include "bcot/core/camera.h"
 #include "bcot/core/status.h"
@@ -80,17 +85,23 @@ class MultiViewTracker {
   MultiViewTracker(const RayCaster& caster, std::vector<TrackedView> views,
                    const MultiViewTrackerOptions& options);
   Status CheckImages(const std::vector<cv::Mat3b>& images) const;
-  // Updates every view's colour model at the pose; `fresh` replaces the models first.
-  void LearnColors(const std::vector<cv::Mat3b>& images, const Eigen::Isometry3d& rig_from_objcentre,
-                   bool fresh);
+  // Replaces view `view`'s colour models by fresh (unlearned) ones.
+  void ResetColorModels(size_t view);
+  // Updates every view's colour models at the pose; `fresh` replaces the models first.
+  void LearnColors(const std::vector<cv::Mat3b>& images,
+                   const Eigen::Isometry3d& rig_from_objcentre, bool fresh);
+  // One joint solve; `refine` lets the full-resolution rounds use the refinement models.
   FrameSummary Solve(const std::vector<cv::Mat3b>& images, Eigen::Isometry3d* rig_from_objcentre,
-                     std::vector<ViewLinearisation>* linearisations);
+                     std::vector<ViewLinearisation>* linearisations, bool refine);
 
   const RayCaster& caster_;
   std::vector<TrackedView> views_;
   MultiViewTrackerOptions options_;
   FrameProblem problem_;
   std::vector<std::unique_ptr<ColorModel>> color_models_;
+  // Per view, the model of the full-resolution rounds when color.refine_kind differs from
+  // color.kind, else null.
+  std::vector<std::unique_ptr<ColorModel>> refine_color_models_;
   // The estimate of the frame before the last one, when Track produced both.
   std::optional<Eigen::Isometry3d> previous_rig_from_objcentre_;
 };

@@ -11,7 +11,8 @@
 //   lines:   CorrespondenceLineOptions num_lines, scale_px, half_length_px, min_side_px,
 //                                     slope_px, amplitude, hypothesis_subdivisions,
 //                                     min_sigma_px, max_sigma_px, weight
-//   color:   ColorModelOptions        kind (global | local), bins_per_channel,
+//   color:   ColorModelOptions        kind (global | local), refine_kind (same | global |
+//                                     local), bins_per_channel,
 //                                     learning_rate_foreground, learning_rate_background,
 //                                     background_band_px, sample_margin_px,
 //                                     local_region_radius_px, local_region_spacing_px,
@@ -31,10 +32,10 @@
 // every option; reading it back gives the same options.
 #pragma once
 
+#include <yaml-cpp/yaml.h>
+
 #include <string>
 #include <vector>
-
-#include <yaml-cpp/yaml.h>
 
 #include "bcot/core/status.h"
 #include "bcot/optim/multi_view_tracker.h"
