@@ -186,6 +186,37 @@ bool Occluded(RTCScene scene, const RayFrame& frame, const Eigen::Vector3d& dire
   return ray.tfar < 0.0f;
 }
 
+void Occluded8(RTCScene scene, const RayFrame& frame, const Eigen::Vector3d* directions_in_cam,
+               const bool* active, bool* hits) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay8 packet;
+  alignas(32) int valid[kPacketSize];  // Embree requires the valid mask 32-byte aligned
+  for (int lane = 0; lane < kPacketSize; ++lane) {
+    valid[lane] = active[lane] ? -1 : 0;
+    // Inactive lanes still get a well-defined ray: Embree may load the whole packet.
+    const RTCRay ray =
+        MakeRay(frame, active[lane] ? frame.DirectionInObject(directions_in_cam[lane])
+                                    : Eigen::Vector3d(0.0, 0.0, 1.0));
+    packet.org_x[lane] = ray.org_x;
+    packet.org_y[lane] = ray.org_y;
+    packet.org_z[lane] = ray.org_z;
+    packet.tnear[lane] = ray.tnear;
+    packet.dir_x[lane] = ray.dir_x;
+    packet.dir_y[lane] = ray.dir_y;
+    packet.dir_z[lane] = ray.dir_z;
+    packet.time[lane] = ray.time;
+    packet.tfar[lane] = ray.tfar;
+    packet.mask[lane] = ray.mask;
+    packet.id[lane] = static_cast<unsigned>(lane);
+    packet.flags[lane] = ray.flags;
+  }
+  rtcOccluded8(valid, scene, &context, &packet);
+  for (int lane = 0; lane < kPacketSize; ++lane) {
+    if (active[lane]) hits[lane] = packet.tfar[lane] < 0.0f;
+  }
+}
+
 std::optional<SingleHit> Intersect(RTCScene scene, const RayFrame& frame,
                                    const Eigen::Vector3d& direction_in_cam) {
   RTCIntersectContext context;
