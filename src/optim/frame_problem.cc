@@ -39,8 +39,8 @@ Status FrameProblemOptions::Validate() const {
                                      damping_translation_mm));
   }
   if (!(damping_rotation_deg >= 0.0) || !std::isfinite(damping_rotation_deg)) {
-    violations.push_back(fmt::format("damping_rotation_deg = {}, must be finite and >= 0",
-                                     damping_rotation_deg));
+    violations.push_back(
+        fmt::format("damping_rotation_deg = {}, must be finite and >= 0", damping_rotation_deg));
   }
   if (coarse_rounds < 1) {
     violations.push_back(fmt::format("coarse_rounds = {}, must be >= 1", coarse_rounds));
@@ -54,8 +54,8 @@ Status FrameProblemOptions::Validate() const {
   if (!cost_status.ok()) violations.push_back(cost_status.message());
   if (energy != RegionEnergy::kDense && energy != RegionEnergy::kSparse &&
       energy != RegionEnergy::kCombined) {
-    violations.push_back(fmt::format("energy = {}, must be dense, sparse or combined",
-                                     static_cast<int>(energy)));
+    violations.push_back(
+        fmt::format("energy = {}, must be dense, sparse or combined", static_cast<int>(energy)));
   }
   if (energy != RegionEnergy::kDense && lines.weight == 0.0) {
     violations.push_back("lines.weight = 0, must be > 0 when the sparse energy is used");
@@ -125,11 +125,11 @@ LevelOptions OptionsAtLevel(const FrameProblemOptions& options, int level) {
 // its correspondence lines (either may be absent).
 struct ViewTemplate {
   int view = 0;
-  std::shared_ptr<const RegionTemplate> region_template;   // null without a dense term
-  RegionCostOptions cost;                                  // with the view's weight
-  std::unique_ptr<RegionCostFunction> energy;              // w·Σ F over every pixel
-  std::shared_ptr<const CorrespondenceLines> lines;        // null without a sparse term
-  double line_weight = 0.0;                                // w_v · lines.weight
+  std::shared_ptr<const RegionTemplate> region_template;        // null without a dense term
+  RegionCostOptions cost;                                       // with the view's weight
+  std::unique_ptr<RegionCostFunction> energy;                   // w·Σ F over every pixel
+  std::shared_ptr<const CorrespondenceLines> lines;             // null without a sparse term
+  double line_weight = 0.0;                                     // w_v · lines.weight
   std::unique_ptr<CorrespondenceLineCostFunction> line_energy;  // ½Σ r² over every line
 
   double Energy(const double* parameters) const {
@@ -159,9 +159,9 @@ void AddDamping(const FrameProblemOptions& options, const std::vector<ViewTempla
   const double root = std::sqrt(residual_count);
   const double translation_scale =
       options.damping_translation_mm > 0.0 ? root / options.damping_translation_mm : 0.0;
-  const double rotation_scale =
-      options.damping_rotation_deg > 0.0 ? root / (options.damping_rotation_deg * kPi / 180.0)
-                                         : 0.0;
+  const double rotation_scale = options.damping_rotation_deg > 0.0
+                                    ? root / (options.damping_rotation_deg * kPi / 180.0)
+                                    : 0.0;
   problem->AddResidualBlock(
       new PoseDampingCost(linearisation_pose, translation_scale, rotation_scale), nullptr,
       parameters);
@@ -221,16 +221,16 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
     for (size_t v = 0; v < views.size(); ++v) {
       const FrameView& view = views[v];
       if (view.weight == 0.0) continue;
-      const Silhouette silhouette =
-          RenderSilhouette(caster_, *view.camera,
-                           view.cam_from_rig * linearisation_pose * objcentre_from_template,
-                           level_options.region.contour);
+      // The template reads the render's model points on its stride only.
+      const Silhouette silhouette = RenderSilhouette(
+          caster_, *view.camera, view.cam_from_rig * linearisation_pose * objcentre_from_template,
+          level_options.region.contour, level_options.region.stride_px);
       ViewTemplate t;
       t.view = static_cast<int>(v);
       if (options_.energy != RegionEnergy::kSparse) {
-        StatusOr<RegionTemplate> region_template = BuildRegionTemplate(
-            caster_, *view.camera, view.cam_from_rig, linearisation_pose, *view.image,
-            *view.color_model, silhouette, level_options.region);
+        StatusOr<RegionTemplate> region_template =
+            BuildRegionTemplate(caster_, *view.camera, view.cam_from_rig, linearisation_pose,
+                                *view.image, *view.color_model, silhouette, level_options.region);
         // Options were validated and the view checked above: a failure here is a bug.
         BCOT_CHECK(region_template.ok());
         if (!region_template->pixels.empty()) {
@@ -239,9 +239,8 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
           t.cost = level_options.cost;
           t.cost.view_weight = view.weight;
           const int pixel_count = static_cast<int>(t.region_template->pixels.size());
-          t.energy = std::make_unique<RegionCostFunction>(*view.camera, view.cam_from_rig,
-                                                          t.region_template, 0, pixel_count,
-                                                          t.cost);
+          t.energy = std::make_unique<RegionCostFunction>(
+              *view.camera, view.cam_from_rig, t.region_template, 0, pixel_count, t.cost);
           AddRegionResidualBlocks(*view.camera, view.cam_from_rig, t.region_template, t.cost,
                                   x.data(), &problem);
           if (step.level == 0) summary.views[v].pixels = pixel_count;
@@ -267,8 +266,7 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
       templates.push_back(std::move(t));
     }
     if (templates.empty()) {
-      return fail(FrameTermination::kNotVisible,
-                  where + ": the object is outside every view");
+      return fail(FrameTermination::kNotVisible, where + ": the object is outside every view");
     }
     if (step.round == 0) summary.initial_energy = TotalEnergy(templates, x.data());
     AddDamping(options_, templates, linearisation_pose, x.data(), &problem);

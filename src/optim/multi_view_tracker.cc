@@ -40,13 +40,15 @@ StatusOr<std::unique_ptr<MultiViewTracker>> MultiViewTracker::Create(
                                                view.camera.name, view.weight));
     }
   }
-  return std::unique_ptr<MultiViewTracker>(
-      new MultiViewTracker(caster, std::move(views), options));
+  return std::unique_ptr<MultiViewTracker>(new MultiViewTracker(caster, std::move(views), options));
 }
 
 MultiViewTracker::MultiViewTracker(const RayCaster& caster, std::vector<TrackedView> views,
                                    const MultiViewTrackerOptions& options)
-    : caster_(caster), views_(std::move(views)), options_(options), problem_(caster, options.frame) {
+    : caster_(caster),
+      views_(std::move(views)),
+      options_(options),
+      problem_(caster, options.frame) {
   for (size_t v = 0; v < views_.size(); ++v) {
     color_models_.push_back(MakeColorModel(options_.color, caster_.mesh().diameter()));
   }
@@ -73,10 +75,13 @@ void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
   const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
   for (size_t v = 0; v < views_.size(); ++v) {
     if (fresh) color_models_[v] = MakeColorModel(options_.color, caster_.mesh().diameter());
-    const Silhouette silhouette = RenderSilhouette(
-        caster_, views_[v].camera,
-        views_[v].cam_from_rig * rig_from_objcentre * objcentre_from_template,
-        options_.frame.region.contour);
+    const Eigen::Isometry3d cam_from_template =
+        views_[v].cam_from_rig * rig_from_objcentre * objcentre_from_template;
+    const Silhouette silhouette =
+        color_models_[v]->UsesContour()
+            ? RenderSilhouette(caster_, views_[v].camera, cam_from_template,
+                               options_.frame.region.contour)
+            : RenderSilhouetteMask(caster_, views_[v].camera, cam_from_template);
     color_models_[v]->Update(images[v], silhouette);
   }
 }

@@ -113,6 +113,9 @@ class ColorModel {
       const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const = 0;
   // True once an Update saw both foreground and background samples.
   virtual bool initialized() const = 0;
+  // True when Update reads the silhouette's contour; false when the mask is all it needs (the
+  // caller may then pass a silhouette without contour, see RenderSilhouetteMask).
+  virtual bool UsesContour() const = 0;
 };
 
 class GlobalColorModel final : public ColorModel {
@@ -123,6 +126,7 @@ class GlobalColorModel final : public ColorModel {
   std::vector<double> ForegroundPosteriors(
       const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const override;
   bool initialized() const override { return histograms_.initialized(); }
+  bool UsesContour() const override { return false; }
   const ColorHistograms& histograms() const { return histograms_; }
 
  private:
@@ -138,6 +142,7 @@ class LocalColorModel final : public ColorModel {
   std::vector<double> ForegroundPosteriors(
       const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const override;
   bool initialized() const override { return fallback_.initialized(); }
+  bool UsesContour() const override { return true; }
 
   // Regions of the last Update (centre in the image) and the number ever learned.
   struct ActiveRegion {
