@@ -96,6 +96,9 @@ class ColorHistograms {
  private:
   int bins_per_channel_;
   int bin_width_;
+  // log2 of bins_per_channel_ and bin_width_ (both powers of two): Bin shifts, not divides.
+  int bins_shift_;
+  int width_shift_;
   std::vector<float> foreground_;
   std::vector<float> background_;
   bool foreground_initialized_ = false;
