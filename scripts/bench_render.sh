@@ -4,35 +4,20 @@
 # Usage: scripts/bench_render.sh [extra benchmark flags, e.g. --benchmark_filter=threads:1]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-dir=build-bench
-json="$dir/bench_render.json"
-cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
-  -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
-cmake --build "$dir" --target bench_render
-# One run gives both outputs: the console table on stdout, JSON into a file.
-"$dir/tests/bench/bench_render" --benchmark_format=console \
-  --benchmark_out="$json" --benchmark_out_format=json "$@"
+source scripts/bench_lib.sh
+run_google_benchmark bench_render "$@"
 
-python3 - "$json" <<'EOF'
-import json, sys
+python3 - "build-bench/bench_render.json" <<'EOF'
+import sys
+sys.path.insert(0, "scripts")
+import bench_json
 
-with open(sys.argv[1]) as f:
-    report = json.load(f)
-ctx = report["context"]
-print()
-print(f"bcot Release build, {ctx.get('num_cpus', '?')} CPUs @ {ctx.get('mhz_per_cpu', '?')} MHz, "
-      f"load average {ctx.get('load_avg', '?')}")
-print("ms/frame is wall time per call; CPU ms is the calling thread's (with threads = 1 all work")
-print("runs on it, so it is the single-core cost even when other processes share the CPU).")
-print()
-print("| benchmark | threads | rays or points | ms/frame | CPU ms | Mrays/s | Mrays/s/core |")
-print("|---|---:|---:|---:|---:|---:|---:|")
-scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
-for b in report["benchmarks"]:
-    if b.get("run_type") == "aggregate":
-        continue
-    ms = b["real_time"] * scale[b["time_unit"]]
-    cpu_ms = b["cpu_time"] * scale[b["time_unit"]]
+report = bench_json.load(
+    sys.argv[1],
+    ["ms/frame is wall time per call; CPU ms is the calling thread's (with threads = 1 all work",
+     "runs on it, so it is the single-core cost even when other processes share the CPU)."],
+    ["benchmark", "threads", "rays or points", "ms/frame", "CPU ms", "Mrays/s", "Mrays/s/core"])
+for b, ms, cpu_ms in bench_json.runs(report):
     threads = int(b["tbb_threads"])
     name = b["name"].rsplit("/threads:", 1)[0]
     if "rays_per_second" in b:

@@ -59,16 +59,21 @@ Status ColorModelOptions::Validate() const {
 // ColorHistograms
 
 ColorHistograms::ColorHistograms(int bins_per_channel)
-    : bins_per_channel_(bins_per_channel), bin_width_(256 / bins_per_channel) {
+    : bins_per_channel_(bins_per_channel),
+      bin_width_(256 / bins_per_channel),
+      bins_shift_(0),
+      width_shift_(0) {
   BCOT_CHECK(bins_per_channel >= 1 && bins_per_channel <= 256 && 256 % bins_per_channel == 0);
+  while ((1 << bins_shift_) < bins_per_channel_) ++bins_shift_;
+  while ((1 << width_shift_) < bin_width_) ++width_shift_;
   const size_t size = static_cast<size_t>(bins_per_channel) * bins_per_channel * bins_per_channel;
   foreground_.assign(size, 0.0f);
   background_.assign(size, 0.0f);
 }
 
 int ColorHistograms::Bin(const cv::Vec3b& color) const {
-  return (color[0] / bin_width_ * bins_per_channel_ + color[1] / bin_width_) * bins_per_channel_ +
-         color[2] / bin_width_;
+  return ((color[0] >> width_shift_) << (2 * bins_shift_)) |
+         ((color[1] >> width_shift_) << bins_shift_) | (color[2] >> width_shift_);
 }
 
 namespace {

@@ -83,56 +83,108 @@ Status CorrespondenceLineOptions::Validate() const {
   return internal::JoinViolations("correspondence_lines", violations);
 }
 
-bool ContourDistribution(const std::vector<double>& p_foreground, double first_offset_px,
-                         const CorrespondenceLineOptions& options, double* mean_px,
-                         double* sigma_px) {
+namespace {
+
+// The smoothed step h_f(m·step) = ½ − α·tanh(m·step / (2·slope)), step = h / subdivisions, for
+// every integer m with |m| <= max_index: the offsets s_k − d of every (sample, hypothesis)
+// pair of a line with at most max_index / subdivisions + 2 samples. Built once per view, so
+// the lines share its tanh evaluations.
+class SmoothedStepTable {
+ public:
+  SmoothedStepTable(const CorrespondenceLineOptions& options, int max_index)
+      : max_index_(max_index), values_(2 * static_cast<size_t>(max_index) + 1) {
+    const double step = options.scale_px / options.hypothesis_subdivisions;
+    const double inverse_width = 1.0 / (2.0 * options.slope_px);
+    for (int m = -max_index; m <= max_index; ++m) {
+      values_[m + max_index] = 0.5 - options.amplitude * std::tanh(m * step * inverse_width);
+    }
+  }
+
+  // The largest |m| a line of `num_samples` samples needs (see ContourDistributionFromTable).
+  static int MaxIndex(int num_samples, const CorrespondenceLineOptions& options) {
+    return std::max(0, num_samples - 2) * options.hypothesis_subdivisions;
+  }
+
+  int max_index() const { return max_index_; }
+  // h_f at offset m·step; |m| <= max_index.
+  double operator[](int m) const { return values_[m + max_index_]; }
+
+ private:
+  int max_index_;
+  std::vector<double> values_;
+};
+
+// Products of line terms below this are folded into the log-likelihood sum (one log) and
+// restarted at 1: every term is >= ½ − α > 0, so the product never underflows.
+constexpr double kRenormaliseBelow = 1e-100;
+
+bool ContourDistributionFromTable(const std::vector<double>& p_foreground, double first_offset_px,
+                                  const CorrespondenceLineOptions& options,
+                                  const SmoothedStepTable& smoothed_step, double* mean_px,
+                                  double* sigma_px) {
   const int n = static_cast<int>(p_foreground.size());
   if (n < 3) return false;
+  BCOT_CHECK(SmoothedStepTable::MaxIndex(n, options) <= smoothed_step.max_index());
   const double h = options.scale_px;
-  const double step = h / options.hypothesis_subdivisions;
+  const int subdivisions = options.hypothesis_subdivisions;
+  const double step = h / subdivisions;
   // Hypotheses from the second to the second-last sample: a boundary at the very end of the
   // line would have a single sample on one side.
-  const int num_hypotheses = (n - 3) * options.hypothesis_subdivisions + 1;
+  const int num_hypotheses = (n - 3) * subdivisions + 1;
   const double first_hypothesis = first_offset_px + h;
-  std::vector<double> log_likelihood(num_hypotheses, 0.0);
-  const double inverse_width = 1.0 / (2.0 * options.slope_px);
-  // s_k − d_j = (k·S − S − j)·step with S = subdivisions: tabulate h_f over that integer.
-  const int subdivisions = options.hypothesis_subdivisions;
-  const int lowest = -subdivisions - (num_hypotheses - 1);
-  std::vector<double> smoothed_step((n - 1) * subdivisions - lowest + 1);
-  for (size_t i = 0; i < smoothed_step.size(); ++i) {
-    const double offset = (static_cast<int>(i) + lowest) * step;
-    smoothed_step[i] = 0.5 - options.amplitude * std::tanh(offset * inverse_width);
+  // Term k of hypothesis j: h_f·P_f + (1 − h_f)·(1 − P_f) = (1 − P_f) + h_f·(2P_f − 1), with
+  // h_f at s_k − d_j = (k·S − S − j)·step (S = subdivisions). log Π_k instead of Σ_k log: one
+  // log per hypothesis instead of one per sample and hypothesis.
+  std::vector<double> background(n);
+  std::vector<double> contrast(n);
+  for (int k = 0; k < n; ++k) {
+    background[k] = 1.0 - p_foreground[k];
+    contrast[k] = 2.0 * p_foreground[k] - 1.0;
   }
+  std::vector<double> log_likelihood(num_hypotheses, 0.0);
   for (int j = 0; j < num_hypotheses; ++j) {
     double sum = 0.0;
+    double product = 1.0;
     for (int k = 0; k < n; ++k) {
-      const double step_foreground = smoothed_step[k * subdivisions - subdivisions - j - lowest];
-      const double pf = p_foreground[k];
-      sum += std::log(step_foreground * pf + (1.0 - step_foreground) * (1.0 - pf));
+      product *= background[k] + contrast[k] * smoothed_step[(k - 1) * subdivisions - j];
+      if (product < kRenormaliseBelow) {
+        sum += std::log(product);
+        product = 1.0;
+      }
     }
-    log_likelihood[j] = sum;
+    log_likelihood[j] = sum + std::log(product);
   }
   const auto best = std::max_element(log_likelihood.begin(), log_likelihood.end());
   const int mode = static_cast<int>(best - log_likelihood.begin());
   const double max_log = *best;
+  std::vector<double>& weights = log_likelihood;  // p(d_j) up to normalisation, in place
   double total = 0.0;
   double first_moment = 0.0;
   for (int j = 0; j < num_hypotheses; ++j) {
-    const double p = std::exp(log_likelihood[j] - max_log);
-    total += p;
-    first_moment += p * (first_hypothesis + j * step);
+    weights[j] = std::exp(log_likelihood[j] - max_log);
+    total += weights[j];
+    first_moment += weights[j] * (first_hypothesis + j * step);
   }
   const double mean = first_moment / total;
   double variance = 0.0;
   for (int j = 0; j < num_hypotheses; ++j) {
-    const double p = std::exp(log_likelihood[j] - max_log);
     const double deviation = first_hypothesis + j * step - mean;
-    variance += p * deviation * deviation;
+    variance += weights[j] * deviation * deviation;
   }
   *mean_px = mean;
   *sigma_px = std::sqrt(variance / total);
   return num_hypotheses >= 3 && mode != 0 && mode != num_hypotheses - 1;
+}
+
+}  // namespace
+
+bool ContourDistribution(const std::vector<double>& p_foreground, double first_offset_px,
+                         const CorrespondenceLineOptions& options, double* mean_px,
+                         double* sigma_px) {
+  const int n = static_cast<int>(p_foreground.size());
+  const SmoothedStepTable table(options, SmoothedStepTable::MaxIndex(n, options));
+  return ContourDistributionFromTable(p_foreground, first_offset_px, options, table, mean_px,
+                                      sigma_px);
 }
 
 StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
@@ -209,6 +261,9 @@ StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
   }
   if (pending.empty()) return result;
   const std::vector<double> posteriors = color_model.ForegroundPosteriors(image, queries);
+  int max_samples = 0;
+  for (const PendingLine& p : pending) max_samples = std::max(max_samples, p.num_samples);
+  const SmoothedStepTable smoothed_step(options, SmoothedStepTable::MaxIndex(max_samples, options));
 
   std::vector<double> samples;
   for (const PendingLine& p : pending) {
@@ -227,7 +282,8 @@ StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
     }
     CorrespondenceLine line = p.line;
     double sigma = 0.0;
-    if (!ContourDistribution(samples, p.first_sample * h, options, &line.mean_px, &sigma) ||
+    if (!ContourDistributionFromTable(samples, p.first_sample * h, options, smoothed_step,
+                                      &line.mean_px, &sigma) ||
         sigma > options.max_sigma_px) {
       ++result.rejected_ambiguous;
       continue;

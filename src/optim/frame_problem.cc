@@ -221,9 +221,10 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
     for (size_t v = 0; v < views.size(); ++v) {
       const FrameView& view = views[v];
       if (view.weight == 0.0) continue;
+      // The template reads the render's model points on its stride only.
       const Silhouette silhouette = RenderSilhouette(
           caster_, *view.camera, view.cam_from_rig * linearisation_pose * objcentre_from_template,
-          level_options.region.contour);
+          level_options.region.contour, level_options.region.stride_px);
       const ColorModel& color_model = step.level == 0 && view.refine_color_model != nullptr
                                           ? *view.refine_color_model
                                           : *view.color_model;

@@ -83,10 +83,15 @@ void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
   const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
   for (size_t v = 0; v < views_.size(); ++v) {
     if (fresh) ResetColorModels(v);
+    const Eigen::Isometry3d cam_from_template =
+        views_[v].cam_from_rig * rig_from_objcentre * objcentre_from_template;
+    const bool uses_contour =
+        color_models_[v]->UsesContour() ||
+        (refine_color_models_[v] != nullptr && refine_color_models_[v]->UsesContour());
     const Silhouette silhouette =
-        RenderSilhouette(caster_, views_[v].camera,
-                         views_[v].cam_from_rig * rig_from_objcentre * objcentre_from_template,
-                         options_.frame.region.contour);
+        uses_contour ? RenderSilhouette(caster_, views_[v].camera, cam_from_template,
+                                        options_.frame.region.contour)
+                     : RenderSilhouetteMask(caster_, views_[v].camera, cam_from_template);
     color_models_[v]->Update(images[v], silhouette);
     if (refine_color_models_[v] != nullptr) refine_color_models_[v]->Update(images[v], silhouette);
   }

@@ -94,6 +94,12 @@ StatusOr<RegionTemplate> BuildRegionTemplate(const RayCaster& caster, const Came
                                              const RegionTemplateOptions& options) {
   BCOT_RETURN_IF_ERROR(options.Validate());
   BCOT_RETURN_IF_ERROR(CheckSilhouetteInputs(camera, image, silhouette));
+  if (options.stride_px % silhouette.view.point_stride_px != 0) {
+    return Status::InvalidInput(fmt::format(
+        "camera '{}': silhouette rendered with point stride {} px, the template's stride_px = {} "
+        "is not a multiple of it",
+        camera.name, silhouette.view.point_stride_px, options.stride_px));
+  }
   RegionTemplate result;
   result.rig_from_objcentre = rig_from_objcentre;
   const std::vector<ContourPoint>& contour = silhouette.contour;

@@ -20,13 +20,22 @@ Status CheckSilhouetteInputs(const Camera& camera, const cv::Mat3b& image,
   return Status::Ok();
 }
 
-Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
-                            const Eigen::Isometry3d& cam_from_template,
-                            const ContourOptions& contour_options) {
+namespace {
+
+// The silhouette's mask and render; `points`: with point_in_object on the `point_stride_px`
+// grid (else occlusion rays only).
+Silhouette RenderMask(const RayCaster& caster, const Camera& camera,
+                      const Eigen::Isometry3d& cam_from_template, bool points,
+                      int point_stride_px) {
   Silhouette silhouette;
   silhouette.mask = cv::Mat1b::zeros(camera.height, camera.width);
   RenderOptions render_options;
   render_options.margin_px = 2;
+  render_options.depth = false;
+  render_options.normal_in_cam = false;
+  render_options.point_in_object = points;
+  render_options.triangle_id = false;
+  render_options.point_stride_px = point_stride_px;
   silhouette.view = caster.Render(camera, cam_from_template, render_options);
   const cv::Rect image_rect(0, 0, camera.width, camera.height);
   const cv::Rect inside = silhouette.view.roi & image_rect;
@@ -34,6 +43,21 @@ Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
     const cv::Rect in_view(inside.tl() - silhouette.view.roi.tl(), inside.size());
     silhouette.view.mask(in_view).copyTo(silhouette.mask(inside));
   }
+  return silhouette;
+}
+
+}  // namespace
+
+Silhouette RenderSilhouetteMask(const RayCaster& caster, const Camera& camera,
+                                const Eigen::Isometry3d& cam_from_template) {
+  return RenderMask(caster, camera, cam_from_template, /*points=*/false, 1);
+}
+
+Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
+                            const Eigen::Isometry3d& cam_from_template,
+                            const ContourOptions& contour_options, int point_stride_px) {
+  Silhouette silhouette =
+      RenderMask(caster, camera, cam_from_template, /*points=*/true, point_stride_px);
   silhouette.contour = caster.ExtractContour(camera, cam_from_template, contour_options);
   return silhouette;
 }

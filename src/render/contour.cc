@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <string>
@@ -92,71 +93,124 @@ struct Seed {
 
 struct Refined {
   bool valid = false;
-  Eigen::Vector2d pixel;
-  Eigen::Vector2d normal;  // from the hit end towards the miss end of the bracket
-  Eigen::Vector3d point_in_object;
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
+  Eigen::Vector2d normal = Eigen::Vector2d::Zero();  // from the hit end towards the miss end
+  Eigen::Vector3d point_in_object = Eigen::Vector3d::Zero();
 };
 
-Refined RefineSeed(RTCScene scene, const RayFrame& frame, const Camera& camera, const Seed& seed,
-                   const ContourOptions& options) {
-  // The true boundary lies between a traced (inside) grid sample and an outside neighbour, so
-  // within about √2 grid steps; oblique normals stretch that, hence 2 steps + 1 px of reach.
-  // Steps of at most 1 px keep the bracket on the first transition, not one across a gap.
+// Refines up to kPacketSize seeds in lock-step, one rtcOccluded8 per step: every lane casts
+// exactly the rays a seed-by-seed refinement would (same order, same float rays), so the
+// result does not depend on the batching; the packet only shares the traversal.
+//
+// Per seed: the true boundary lies between a traced (inside) grid sample and an outside
+// neighbour, so within about √2 grid steps; oblique normals stretch that, hence 2 steps + 1 px
+// of reach. Steps of at most 1 px keep the bracket on the first transition, not one across a
+// gap. The guessed orientation is walked first; the opposite one rescues degenerate
+// (zero-area) traced contours whose orientation is arbitrary. From a hit the walk goes outwards
+// to the first miss, from a miss inwards to the first hit; then bisection to precision_px and
+// one closest-hit ray at the inside end for the model point.
+void RefineSeeds(RTCScene scene, const RayFrame& frame, const Camera& camera, const Seed* seeds,
+                 int count, const ContourOptions& options, Refined* refined) {
+  using render_internal::kPacketSize;
+  BCOT_CHECK(count >= 1 && count <= kPacketSize);
   const double step = std::min(1.0, 0.5 * options.coarse_step_px);
   const int max_steps = static_cast<int>(std::ceil((2.0 * options.coarse_step_px + 1.0) / step));
-  // Every ray of this seed is within a few pixels of the first: warm-start the undistortion.
-  Eigen::Vector2d normalized_guess = camera.PixelToRay(seed.pixel).head<2>();
-  auto direction = [&](const Eigen::Vector2d& p) {
-    return render_internal::PixelToRayNear(camera, p, &normalized_guess);
+  enum class Phase { kStart, kWalk, kBisect, kDone };
+  struct Lane {
+    Phase phase = Phase::kDone;
+    Eigen::Vector2d normalized_guess;  // warm start of the undistortion, as in PixelToRayNear
+    bool start_hits = false;
+    double sign = 1.0;  // walked orientation: +1 the guessed normal, then −1
+    int k = 1;          // walk step
+    Eigen::Vector2d previous, inside, outside, normal, query;
+    int iteration = 0;
   };
-  auto hits = [&](const Eigen::Vector2d& p) {
-    return render_internal::Occluded(scene, frame, direction(p));
+  std::array<Lane, kPacketSize> lanes;
+  for (int i = 0; i < count; ++i) {
+    lanes[i].phase = Phase::kStart;
+    // Every ray of a seed is within a few pixels of the first: warm-start the undistortion.
+    lanes[i].normalized_guess = camera.PixelToRay(seeds[i].pixel).head<2>();
+    refined[i] = Refined();
+  }
+  // The next query of a lane, or kDone once its bisection has converged.
+  auto bisection_done = [&](const Lane& lane) {
+    return !(lane.iteration < 60 && (lane.outside - lane.inside).norm() > options.precision_px);
   };
-
-  Refined refined;
-  const bool start_hits = hits(seed.pixel);
-  Eigen::Vector2d inside, outside, normal;
-  bool bracketed = false;
-  // The guessed orientation first; the opposite one rescues degenerate (zero-area) traced
-  // contours whose orientation is arbitrary.
-  for (const double sign : {1.0, -1.0}) {
-    const Eigen::Vector2d outward = sign * seed.normal;
-    // From a hit, walk outwards to the first miss; from a miss, walk inwards to the first hit.
-    const Eigen::Vector2d walk = start_hits ? outward : Eigen::Vector2d(-outward);
-    Eigen::Vector2d previous = seed.pixel;
-    for (int k = 1; k <= max_steps && !bracketed; ++k) {
-      const Eigen::Vector2d p = seed.pixel + (k * step) * walk;
-      if (hits(p) != start_hits) {
-        inside = start_hits ? previous : p;
-        outside = start_hits ? p : previous;
-        normal = outward;
-        bracketed = true;
+  std::array<Eigen::Vector3d, kPacketSize> directions;
+  bool active[kPacketSize];
+  bool hits[kPacketSize];
+  for (;;) {
+    bool any = false;
+    for (int i = 0; i < kPacketSize; ++i) {
+      Lane& lane = lanes[i];
+      active[i] = false;
+      if (lane.phase == Phase::kDone) continue;
+      const Seed& seed = seeds[i];
+      if (lane.phase == Phase::kStart) {
+        lane.query = seed.pixel;
+      } else if (lane.phase == Phase::kWalk) {
+        const Eigen::Vector2d outward = lane.sign * seed.normal;
+        const Eigen::Vector2d walk = lane.start_hits ? outward : Eigen::Vector2d(-outward);
+        lane.query = seed.pixel + (lane.k * step) * walk;
+      } else {
+        if (bisection_done(lane)) {
+          // Each halving costs one occlusion ray; 60 iterations cannot be reached with a valid
+          // precision_px, the bound only guards against float rays that stop changing.
+          lane.phase = Phase::kDone;
+          const auto hit = render_internal::Intersect(
+              scene, frame,
+              render_internal::PixelToRayNear(camera, lane.inside, &lane.normalized_guess));
+          const Eigen::Vector2d pixel = 0.5 * (lane.inside + lane.outside);
+          if (!hit || !camera.InImage(pixel)) continue;
+          refined[i].pixel = pixel;
+          refined[i].normal = lane.normal;
+          refined[i].point_in_object = hit->point_in_object;
+          refined[i].valid = true;
+          continue;
+        }
+        lane.query = 0.5 * (lane.inside + lane.outside);
       }
-      previous = p;
+      directions[i] = render_internal::PixelToRayNear(camera, lane.query, &lane.normalized_guess);
+      active[i] = true;
+      any = true;
     }
-    if (bracketed) break;
-  }
-  if (!bracketed) return refined;
-
-  // Each halving costs one occlusion ray; 60 iterations cannot be reached with a valid
-  // precision_px, the bound only guards against float rays that stop changing.
-  for (int iteration = 0; iteration < 60 && (outside - inside).norm() > options.precision_px;
-       ++iteration) {
-    const Eigen::Vector2d middle = 0.5 * (inside + outside);
-    if (hits(middle)) {
-      inside = middle;
-    } else {
-      outside = middle;
+    if (!any) return;
+    render_internal::Occluded8(scene, frame, directions.data(), active, hits);
+    for (int i = 0; i < kPacketSize; ++i) {
+      if (!active[i]) continue;
+      Lane& lane = lanes[i];
+      const Seed& seed = seeds[i];
+      if (lane.phase == Phase::kStart) {
+        lane.start_hits = hits[i];
+        lane.phase = Phase::kWalk;
+        lane.sign = 1.0;
+        lane.k = 1;
+        lane.previous = seed.pixel;
+      } else if (lane.phase == Phase::kWalk) {
+        if (hits[i] != lane.start_hits) {
+          lane.inside = lane.start_hits ? lane.previous : lane.query;
+          lane.outside = lane.start_hits ? lane.query : lane.previous;
+          lane.normal = lane.sign * seed.normal;
+          lane.phase = Phase::kBisect;
+          lane.iteration = 0;
+        } else {
+          lane.previous = lane.query;
+          if (++lane.k > max_steps) {
+            if (lane.sign > 0.0) {
+              lane.sign = -1.0;
+              lane.k = 1;
+              lane.previous = seed.pixel;
+            } else {
+              lane.phase = Phase::kDone;  // no bracket
+            }
+          }
+        }
+      } else {
+        (hits[i] ? lane.inside : lane.outside) = lane.query;
+        ++lane.iteration;
+      }
     }
   }
-  const auto hit = render_internal::Intersect(scene, frame, direction(inside));
-  if (!hit) return refined;
-  refined.pixel = 0.5 * (inside + outside);
-  if (!camera.InImage(refined.pixel)) return refined;
-  refined.normal = normal;
-  refined.point_in_object = hit->point_in_object;
-  refined.valid = true;
-  return refined;
 }
 
 // Replaces the bracket direction (from the coarse, staircase polyline: several degrees off) by
@@ -250,13 +304,18 @@ std::vector<ContourPoint> RayCaster::ExtractContour(const Camera& camera,
     }
   }
 
+  // Packets of consecutive seeds: neighbours along a contour, so their rays are coherent.
   std::vector<Refined> refined(seeds.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, seeds.size(), 16),
-                    [&](const tbb::blocked_range<size_t>& range) {
-                      for (size_t i = range.begin(); i != range.end(); ++i) {
-                        refined[i] = RefineSeed(impl_->scene, frame, camera, seeds[i], options);
-                      }
-                    });
+  const size_t packet = render_internal::kPacketSize;
+  const size_t num_packets = (seeds.size() + packet - 1) / packet;
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, num_packets, 2), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t p = range.begin(); p != range.end(); ++p) {
+          const size_t first = p * packet;
+          const int count = static_cast<int>(std::min(packet, seeds.size() - first));
+          RefineSeeds(impl_->scene, frame, camera, &seeds[first], count, options, &refined[first]);
+        }
+      });
 
   std::vector<ContourPoint> contour_points;
   contour_points.reserve(seeds.size());

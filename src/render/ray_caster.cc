@@ -46,6 +46,13 @@ Status RenderOptions::Validate() const {
     violations.push_back(fmt::format("samples_per_axis = {}, must be in [1, {}]", samples_per_axis,
                                      kMaxSamplesPerAxis));
   }
+  if (point_stride_px < 1) {
+    violations.push_back(fmt::format("point_stride_px = {}, must be >= 1", point_stride_px));
+  }
+  if (point_stride_px > 1 && samples_per_axis != 1) {
+    violations.push_back(fmt::format("point_stride_px = {} needs samples_per_axis = 1, not {}",
+                                     point_stride_px, samples_per_axis));
+  }
   return JoinViolations("render", violations);
 }
 
@@ -186,6 +193,37 @@ bool Occluded(RTCScene scene, const RayFrame& frame, const Eigen::Vector3d& dire
   return ray.tfar < 0.0f;
 }
 
+void Occluded8(RTCScene scene, const RayFrame& frame, const Eigen::Vector3d* directions_in_cam,
+               const bool* active, bool* hits) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay8 packet;
+  alignas(32) int valid[kPacketSize];  // Embree requires the valid mask 32-byte aligned
+  for (int lane = 0; lane < kPacketSize; ++lane) {
+    valid[lane] = active[lane] ? -1 : 0;
+    // Inactive lanes still get a well-defined ray: Embree may load the whole packet.
+    const RTCRay ray =
+        MakeRay(frame, active[lane] ? frame.DirectionInObject(directions_in_cam[lane])
+                                    : Eigen::Vector3d(0.0, 0.0, 1.0));
+    packet.org_x[lane] = ray.org_x;
+    packet.org_y[lane] = ray.org_y;
+    packet.org_z[lane] = ray.org_z;
+    packet.tnear[lane] = ray.tnear;
+    packet.dir_x[lane] = ray.dir_x;
+    packet.dir_y[lane] = ray.dir_y;
+    packet.dir_z[lane] = ray.dir_z;
+    packet.time[lane] = ray.time;
+    packet.tfar[lane] = ray.tfar;
+    packet.mask[lane] = ray.mask;
+    packet.id[lane] = static_cast<unsigned>(lane);
+    packet.flags[lane] = ray.flags;
+  }
+  rtcOccluded8(valid, scene, &context, &packet);
+  for (int lane = 0; lane < kPacketSize; ++lane) {
+    if (active[lane]) hits[lane] = packet.tfar[lane] < 0.0f;
+  }
+}
+
 std::optional<SingleHit> Intersect(RTCScene scene, const RayFrame& frame,
                                    const Eigen::Vector3d& direction_in_cam) {
   RTCIntersectContext context;
@@ -299,6 +337,7 @@ void RayCaster::Render(const Camera& camera, const Eigen::Isometry3d& cam_from_o
   BCOT_CHECK(options.Validate().ok());
   BCOT_CHECK(view != nullptr);
   view->samples_per_axis = options.samples_per_axis;
+  view->point_stride_px = options.point_stride_px;
   view->roi = options.roi.area() > 0
                   ? options.roi
                   : ProjectedBoundingBox(camera, cam_from_object, options.margin_px);
@@ -306,17 +345,24 @@ void RayCaster::Render(const Camera& camera, const Eigen::Isometry3d& cam_from_o
   const int cols = view->roi.width * n;
   const int rows = view->roi.height * n;
   // create() keeps the buffers when the size is unchanged; setTo then only rewrites them.
-  view->mask.create(rows, cols);
-  view->depth.create(rows, cols);
-  view->normal_in_cam.create(rows, cols);
-  view->point_in_object.create(rows, cols);
-  view->triangle_id.create(rows, cols);
+  // Images left out are released (0×0).
+  auto prepare = [rows, cols](bool wanted, auto* image, const cv::Scalar& empty) {
+    if (!wanted) {
+      image->release();
+      return;
+    }
+    image->create(rows, cols);
+    if (rows > 0 && cols > 0) image->setTo(empty);
+  };
+  prepare(true, &view->mask, cv::Scalar::all(0));
+  prepare(options.depth, &view->depth, cv::Scalar::all(0));
+  prepare(options.normal_in_cam, &view->normal_in_cam, cv::Scalar::all(0));
+  prepare(options.point_in_object, &view->point_in_object, cv::Scalar::all(0));
+  prepare(options.triangle_id, &view->triangle_id, cv::Scalar::all(-1));
   if (cols == 0 || rows == 0) return;
-  view->mask.setTo(0);
-  view->depth.setTo(0);
-  view->normal_in_cam.setTo(cv::Scalar::all(0));
-  view->point_in_object.setTo(cv::Scalar::all(0));
-  view->triangle_id.setTo(-1);
+  const bool geometry =
+      options.depth || options.normal_in_cam || options.point_in_object || options.triangle_id;
+  const int stride = options.point_stride_px;
 
   SampleGrid grid;
   grid.step = 1.0 / n;
@@ -327,24 +373,62 @@ void RayCaster::Render(const Camera& camera, const Eigen::Isometry3d& cam_from_o
   const RayFrame frame(cam_from_object);
   const Eigen::Matrix3f cam_from_object_rotation = frame.cam_from_object_rotation.cast<float>();
   const Eigen::Vector3f origin = frame.cam_centre_in_object.cast<float>();
+  // Row and column of the view image a sample of the traced grid lands on.
+  int col_offset = 0;
+  int row_offset = 0;
+  int grid_step = 1;
+  if (!geometry || stride > 1) {
+    // The mask everywhere from occlusion rays.
+    render_internal::TraceGrid(impl_->scene, frame, camera, grid, /*occlusion_only=*/true,
+                               [&](const LaneHit& hit) { view->mask(hit.row, hit.col) = 255; });
+    if (!geometry) return;
+    // Then closest-hit rays on the pixels whose image coordinates are multiples of the stride;
+    // their mask is the closest-hit result, so a set mask always comes with its geometry.
+    auto first_multiple = [stride](int value) {
+      return value >= 0 ? (value + stride - 1) / stride * stride : -(-value / stride * stride);
+    };
+    const int x0 = first_multiple(view->roi.x);
+    const int y0 = first_multiple(view->roi.y);
+    col_offset = x0 - view->roi.x;
+    row_offset = y0 - view->roi.y;
+    grid_step = stride;
+    grid.u0 = x0;
+    grid.v0 = y0;
+    grid.step = stride;
+    grid.cols = col_offset < cols ? (cols - 1 - col_offset) / stride + 1 : 0;
+    grid.rows = row_offset < rows ? (rows - 1 - row_offset) / stride + 1 : 0;
+    for (int r = 0; r < grid.rows; ++r) {
+      uchar* mask_row = view->mask.ptr(row_offset + r * stride);
+      for (int c = 0; c < grid.cols; ++c) mask_row[col_offset + c * stride] = 0;
+    }
+  }
   render_internal::TraceGrid(
-      impl_->scene, frame, camera, grid, /*occlusion_only=*/false, [&](const LaneHit& hit) {
-        const Eigen::Vector3f& direction = *hit.direction_in_object;
-        Eigen::Vector3f normal = hit.ng_in_object;
-        // Face the camera: against the ray direction.
-        if (normal.dot(direction) > 0.0f) normal = -normal;
-        Eigen::Vector3f normal_in_cam = cam_from_object_rotation * normal;
-        const float length = normal_in_cam.norm();
-        if (length > 0.0f) normal_in_cam /= length;
-        // t is the camera depth because the direction's camera z is 1.
-        const Eigen::Vector3f point_in_object = origin + hit.t * direction;
+      impl_->scene, frame, camera, grid, /*occlusion_only=*/false, [&](const LaneHit& lane_hit) {
+        LaneHit hit = lane_hit;
+        hit.row = row_offset + lane_hit.row * grid_step;
+        hit.col = col_offset + lane_hit.col * grid_step;
         view->mask(hit.row, hit.col) = 255;
-        view->depth(hit.row, hit.col) = hit.t;
-        view->normal_in_cam(hit.row, hit.col) =
-            cv::Vec3f(normal_in_cam.x(), normal_in_cam.y(), normal_in_cam.z());
-        view->point_in_object(hit.row, hit.col) =
-            cv::Vec3f(point_in_object.x(), point_in_object.y(), point_in_object.z());
-        view->triangle_id(hit.row, hit.col) = static_cast<int>(hit.triangle_id);
+        const Eigen::Vector3f& direction = *hit.direction_in_object;
+        // t is the camera depth because the direction's camera z is 1.
+        if (options.depth) view->depth(hit.row, hit.col) = hit.t;
+        if (options.normal_in_cam) {
+          Eigen::Vector3f normal = hit.ng_in_object;
+          // Face the camera: against the ray direction.
+          if (normal.dot(direction) > 0.0f) normal = -normal;
+          Eigen::Vector3f normal_in_cam = cam_from_object_rotation * normal;
+          const float length = normal_in_cam.norm();
+          if (length > 0.0f) normal_in_cam /= length;
+          view->normal_in_cam(hit.row, hit.col) =
+              cv::Vec3f(normal_in_cam.x(), normal_in_cam.y(), normal_in_cam.z());
+        }
+        if (options.point_in_object) {
+          const Eigen::Vector3f point_in_object = origin + hit.t * direction;
+          view->point_in_object(hit.row, hit.col) =
+              cv::Vec3f(point_in_object.x(), point_in_object.y(), point_in_object.z());
+        }
+        if (options.triangle_id) {
+          view->triangle_id(hit.row, hit.col) = static_cast<int>(hit.triangle_id);
+        }
       });
 }
 

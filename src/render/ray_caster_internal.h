@@ -81,6 +81,12 @@ struct SingleHit {
 // Occlusion (any hit) and closest-hit queries for the camera ray with camera-frame direction
 // `direction_in_cam` = (x, y, 1).
 bool Occluded(RTCScene scene, const RayFrame& frame, const Eigen::Vector3d& direction_in_cam);
+// Occluded for up to kPacketSize rays at once (one rtcOccluded8): lane i is traced when
+// active[i], and hits[i] is then what Occluded(directions_in_cam[i]) returns (the same float
+// ray); inactive lanes are left unchanged.
+constexpr int kPacketSize = 8;
+void Occluded8(RTCScene scene, const RayFrame& frame, const Eigen::Vector3d* directions_in_cam,
+               const bool* active, bool* hits);
 std::optional<SingleHit> Intersect(RTCScene scene, const RayFrame& frame,
                                    const Eigen::Vector3d& direction_in_cam);
 

@@ -16,9 +16,9 @@
 //          [--max-mm 4] [--seed 1] [--offset-px 3] [--config FILE]
 // --offset-px: also ground truth as is and shifted so the object moves that far in cam0's image
 // (the accept / reject check).
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -44,7 +44,8 @@ double DistanceToPolyline(const Eigen::Vector2d& p, const std::vector<ContourPoi
     const size_t j = i + 1;
     if (j < contour.size() && contour[j].contour_id == a.contour_id) {
       const Eigen::Vector2d ab = contour[j].pixel - a.pixel;
-      const double s = std::clamp((p - a.pixel).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
+      const double s =
+          std::clamp((p - a.pixel).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
       best = std::min(best, (p - a.pixel - s * ab).norm());
     }
   }
@@ -81,9 +82,10 @@ void PrintCorrelation(const std::string& label, const Rows& rows) {
   for (size_t i = 0; i < rows.true_p90.size(); ++i) {
     mean_abs_difference += std::abs(rows.measured_p90[i] - rows.true_p90[i]) / rows.true_p90.size();
   }
-  std::printf("%-10s rows %zu  pearson(p90) %.3f  pearson(median) %.3f  mean |meas-true| p90 %.3f px\n",
-              label.c_str(), rows.true_p90.size(), Pearson(rows.measured_p90, rows.true_p90),
-              Pearson(rows.measured_median, rows.true_median), mean_abs_difference);
+  std::printf(
+      "%-10s rows %zu  pearson(p90) %.3f  pearson(median) %.3f  mean |meas-true| p90 %.3f px\n",
+      label.c_str(), rows.true_p90.size(), Pearson(rows.measured_p90, rows.true_p90),
+      Pearson(rows.measured_median, rows.true_median), mean_abs_difference);
 }
 
 int Run(const std::string& sequence_dir, const std::string& label,
@@ -124,8 +126,8 @@ int Run(const std::string& sequence_dir, const std::string& label,
       const double true_p90 = AbsPercentile(distances, 0.9);
       const double true_median = AbsPercentile(distances, 0.5);
       std::printf("%-10s %5d %-6s %10.3f %10.3f %10.3f %10.3f %7d/%d\n", label.c_str(), f,
-                  camera.camera.name.c_str(), q.p90_px, true_p90, q.median_px, true_median,
-                  q.found, q.points);
+                  camera.camera.name.c_str(), q.p90_px, true_p90, q.median_px, true_median, q.found,
+                  q.points);
       if (std::isfinite(q.p90_px) && std::isfinite(true_p90)) {
         mine.measured_p90.push_back(q.p90_px);
         mine.true_p90.push_back(true_p90);
@@ -166,8 +168,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "quality_bench: %s\n", options.status().message().c_str());
     return 2;
   }
-  std::printf("%-10s %5s %-6s %10s %10s %10s %10s %9s\n", "poses", "frame", "view",
-              "meas_p90", "true_p90", "meas_med", "true_med", "found");
+  std::printf("%-10s %5s %-6s %10s %10s %10s %10s %9s\n", "poses", "frame", "view", "meas_p90",
+              "true_p90", "meas_med", "true_med", "found");
   Rows rows;
   if (!poses_path.empty()) {
     const StatusOr<std::vector<Eigen::Isometry3d>> poses = ReadPoseFile(poses_path);
@@ -186,7 +188,8 @@ int main(int argc, char** argv) {
     std::normal_distribution<double> normal(0.0, 1.0);
     std::vector<Eigen::Isometry3d> poses = *gt;
     for (Eigen::Isometry3d& rig_from_object : poses) {
-      const Eigen::Vector3d axis = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+      const Eigen::Vector3d axis =
+          Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
       const Eigen::Vector3d direction =
           Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
       const double size = unit(rng);

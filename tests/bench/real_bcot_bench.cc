@@ -11,8 +11,10 @@
 // writes the annotation's (green) and the solution's (red) silhouette contours per frame.
 //
 // Usage: real_bcot_bench --scene DIR --object NAME --model FILE --config FILE [--set k=v]...
-//        [--from-truth] [--overlay-dir DIR]
+//        [--from-truth] [--overlay-dir DIR] [--threads N]
+// TBB (rendering, contours) is limited to --threads (default 1) while timing.
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
@@ -87,7 +89,11 @@ int main(int argc, char** argv) {
                "Solve every frame from its own annotation (where the image optimum lies)");
   app.add_option("--overlay-dir", overlay_dir,
                  "Write <frame>.png with the annotation (green) and solution (red) contours");
+  int threads = 1;
+  app.add_option("--threads", threads, "TBB threads (rendering, contours) while timing")
+      ->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, threads);
 
   StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, overrides);
   if (!options.ok()) return Fail(options.status().message());

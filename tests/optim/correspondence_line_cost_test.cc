@@ -22,11 +22,11 @@
 namespace bcot {
 namespace {
 
-using ::testing::HasSubstr;
 using test::GradientScenarios;
 using test::Scenario;
 using test::ScenarioCamera;
 using test::SeededTwist;
+using ::testing::HasSubstr;
 
 class CorrespondenceLineTest : public ::testing::Test {
  protected:
@@ -108,6 +108,53 @@ TEST(ContourDistributionTest, LocatesAStepAndFlagsAmbiguousLines) {
   EXPECT_FALSE(ContourDistribution(foreground, first, options, &mean, &sigma));
 }
 
+// The distribution is the normalised p(d) ∝ Π_k [h_f·P_f + h_b·P_b] of the header: against a
+// direct Σ_k log evaluation on random lines (seeded), including long lines whose products
+// need renormalising and a near-½ amplitude.
+TEST(ContourDistributionTest, MatchesTheSumOfLogTermsDefinition) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int trial = 0; trial < 40; ++trial) {
+    CorrespondenceLineOptions options;
+    options.scale_px = trial % 3 == 0 ? 2.0 : 1.0;
+    options.hypothesis_subdivisions = 1 + trial % 4;
+    options.amplitude = trial % 5 == 0 ? 0.4999 : 0.42;
+    const int n = 3 + (trial * 37) % 300;
+    std::vector<double> p_foreground(n);
+    for (double& p : p_foreground) p = trial % 2 == 0 ? uniform(rng) : std::round(uniform(rng));
+    const double first = -0.5 * n * options.scale_px;
+    const double h = options.scale_px;
+    const double step = h / options.hypothesis_subdivisions;
+    const int num_hypotheses = (n - 3) * options.hypothesis_subdivisions + 1;
+    std::vector<double> log_likelihood(num_hypotheses, 0.0);
+    for (int j = 0; j < num_hypotheses; ++j) {
+      const double d = first + h + j * step;
+      for (int k = 0; k < n; ++k) {
+        const double h_f =
+            0.5 - options.amplitude * std::tanh((first + k * h - d) / (2.0 * options.slope_px));
+        log_likelihood[j] +=
+            std::log(h_f * p_foreground[k] + (1.0 - h_f) * (1.0 - p_foreground[k]));
+      }
+    }
+    const double max_log = *std::max_element(log_likelihood.begin(), log_likelihood.end());
+    double total = 0.0, first_moment = 0.0, second_moment = 0.0;
+    for (int j = 0; j < num_hypotheses; ++j) {
+      const double p = std::exp(log_likelihood[j] - max_log);
+      const double d = first + h + j * step;
+      total += p;
+      first_moment += p * d;
+      second_moment += p * d * d;
+    }
+    const double expected_mean = first_moment / total;
+    const double expected_sigma =
+        std::sqrt(std::max(0.0, second_moment / total - expected_mean * expected_mean));
+    double mean = 0.0, sigma = 0.0;
+    ContourDistribution(p_foreground, first, options, &mean, &sigma);
+    EXPECT_NEAR(mean, expected_mean, 1e-7 * n) << "trial " << trial;
+    EXPECT_NEAR(sigma, expected_sigma, 1e-5 * (1.0 + expected_sigma)) << "trial " << trial;
+  }
+}
+
 // At the true pose the lines find the rendered boundary where the model puts it: μ ≈ 0.
 TEST_F(CorrespondenceLineTest, LinesAtTheTruthMeasureNoOffset) {
   const Scenario scenario = GradientScenarios()[0];
@@ -125,8 +172,8 @@ TEST_F(CorrespondenceLineTest, LinesAtTheTruthMeasureNoOffset) {
   std::printf("mean signed mu %.3f px\n", signed_sum / offsets.size());
   std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
   std::printf("%zu lines of %d (short %d, off image %d, ambiguous %d), median |mu| %.3f px\n",
-              lines.lines.size(), lines.candidates, lines.rejected_short,
-              lines.rejected_off_image, lines.rejected_ambiguous, offsets[offsets.size() / 2]);
+              lines.lines.size(), lines.candidates, lines.rejected_short, lines.rejected_off_image,
+              lines.rejected_ambiguous, offsets[offsets.size() / 2]);
   EXPECT_LT(offsets[offsets.size() / 2], 0.2);
 }
 
@@ -141,8 +188,8 @@ TEST_F(CorrespondenceLineTest, GradientCheckerAcceptsTheAnalyticJacobian) {
     const cv::Mat3b image = test::RenderTestImage(*caster_, camera, scenario.cam_from_objcentre);
     const Eigen::Isometry3d rig_from_objcentre0 =
         test::RigFromObjcentre(scenario.cam_from_objcentre) * ExpSE3(SeededTwist(rng, 0.01, 2.0));
-    auto lines = std::make_shared<const CorrespondenceLines>(
-        MakeLines(camera, image, rig_from_objcentre0));
+    auto lines =
+        std::make_shared<const CorrespondenceLines>(MakeLines(camera, image, rig_from_objcentre0));
     ASSERT_GT(lines->lines.size(), 50u) << scenario.name;
     const CorrespondenceLineCostFunction cost(camera, test::TestCamFromRig(), lines, 0.7);
     ceres::GradientChecker checker(&cost, &manifolds, numeric_options);
@@ -213,7 +260,7 @@ TEST_P(SparseEnergyConvergenceTest, RecoversAPerturbedFrame) {
       EXPECT_TRUE(summary->usable()) << summary->message;
       EXPECT_GT(summary->views[0].lines, 100);
       EXPECT_THAT(pose, test::PoseNear(scene.rig_from_objcentre, binocular ? 0.1 : 0.5,
-                                           binocular ? 0.2 : 1.0))
+                                       binocular ? 0.2 : 1.0))
           << (binocular ? "binocular" : "monocular") << " seed " << seed;
     }
   }

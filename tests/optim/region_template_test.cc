@@ -135,6 +135,38 @@ TEST_F(RegionTemplateTest, SignedDistanceAgreesWithTheMaskDistanceTransform) {
   }
 }
 
+// A silhouette whose model points were rendered on the template's stride gives the same
+// template as a full render; a stride that is not a multiple of the render's is an error.
+TEST_F(RegionTemplateTest, StridedSilhouetteGivesTheSameTemplate) {
+  RegionTemplateOptions options;
+  options.stride_px = 4;
+  const Silhouette strided =
+      RenderSilhouette(*caster_, camera_, cam_from_objcentre_ * mesh_->objcentre_from_template(),
+                       options.contour, /*point_stride_px=*/4);
+  const StatusOr<RegionTemplate> expected =
+      BuildRegionTemplate(*caster_, camera_, test::TestCamFromRig(), rig_from_objcentre_, image_,
+                          color_model_, silhouette_, options);
+  const StatusOr<RegionTemplate> actual =
+      BuildRegionTemplate(*caster_, camera_, test::TestCamFromRig(), rig_from_objcentre_, image_,
+                          color_model_, strided, options);
+  ASSERT_TRUE(expected.ok() && actual.ok());
+  ASSERT_EQ(actual->pixels.size(), expected->pixels.size());
+  for (size_t i = 0; i < actual->pixels.size(); ++i) {
+    EXPECT_EQ(actual->pixels[i].pixel, expected->pixels[i].pixel);
+    EXPECT_EQ(actual->pixels[i].inside, expected->pixels[i].inside);
+    EXPECT_NEAR(
+        (actual->pixels[i].point_in_objcentre - expected->pixels[i].point_in_objcentre).norm(), 0.0,
+        1e-3);
+  }
+  options.stride_px = 6;
+  const StatusOr<RegionTemplate> mismatched =
+      BuildRegionTemplate(*caster_, camera_, test::TestCamFromRig(), rig_from_objcentre_, image_,
+                          color_model_, strided, options);
+  ASSERT_FALSE(mismatched.ok());
+  EXPECT_EQ(mismatched.status().code(), StatusCode::kInvalidInput);
+  EXPECT_NE(mismatched.status().message().find("point stride 4"), std::string::npos);
+}
+
 TEST_F(RegionTemplateTest, RejectsMismatchedInputsAndHandlesAnInvisibleObject) {
   const cv::Mat3b small(100, 100, cv::Vec3b(0, 0, 0));
   StatusOr<RegionTemplate> result =

@@ -410,6 +410,64 @@ TEST_F(SphereTest, RenderIntoReusedViewEqualsFreshRender) {
   }
 }
 
+// Leaving images out changes nothing in the others; without any, the occlusion-ray mask is
+// the closest-hit mask.
+TEST_F(SphereTest, RenderingASubsetOfImagesMatchesTheFullRender) {
+  const Camera camera = TestCamera();
+  const Eigen::Isometry3d cam_from_object = CamFromObject({12.0, -8.0, kDistance});
+  const RenderedView full = caster_.Render(camera, cam_from_object);
+  RenderOptions points_only;
+  points_only.depth = false;
+  points_only.normal_in_cam = false;
+  points_only.triangle_id = false;
+  RenderedView view = caster_.Render(camera, cam_from_object, points_only);
+  EXPECT_EQ(view.roi, full.roi);
+  EXPECT_EQ(cv::norm(view.mask, full.mask, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(view.point_in_object, full.point_in_object, cv::NORM_INF), 0.0);
+  EXPECT_TRUE(view.depth.empty() && view.normal_in_cam.empty() && view.triangle_id.empty());
+  RenderOptions mask_only = points_only;
+  mask_only.point_in_object = false;
+  caster_.Render(camera, cam_from_object, mask_only, &view);  // releases the points
+  EXPECT_EQ(cv::norm(view.mask, full.mask, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::countNonZero(view.mask), 1000);
+  EXPECT_TRUE(view.point_in_object.empty());
+}
+
+// With a point stride the mask is the full render's everywhere and the geometry is the full
+// render's on the stride grid (image coordinates multiples of the stride), misses elsewhere.
+TEST_F(SphereTest, StridedGeometryMatchesTheFullRenderOnItsGrid) {
+  const Camera camera = TestCamera();
+  const Eigen::Isometry3d cam_from_object = CamFromObject({-21.0, 13.0, kDistance});
+  const RenderedView full = caster_.Render(camera, cam_from_object);
+  for (const int stride : {2, 3, 8}) {
+    RenderOptions options;
+    options.point_stride_px = stride;
+    const RenderedView view = caster_.Render(camera, cam_from_object, options);
+    ASSERT_EQ(view.roi, full.roi);
+    EXPECT_EQ(view.point_stride_px, stride);
+    EXPECT_EQ(cv::norm(view.mask, full.mask, cv::NORM_INF), 0.0) << stride;
+    int on_grid_hits = 0;
+    for (int r = 0; r < view.mask.rows; ++r) {
+      for (int c = 0; c < view.mask.cols; ++c) {
+        const bool on_grid = (view.roi.x + c) % stride == 0 && (view.roi.y + r) % stride == 0;
+        if (on_grid) {
+          EXPECT_NEAR(cv::norm(view.point_in_object(r, c) - full.point_in_object(r, c)), 0.0, 1e-3);
+          EXPECT_EQ(view.triangle_id(r, c), full.triangle_id(r, c));
+          on_grid_hits += view.mask(r, c) != 0;
+        } else {
+          EXPECT_EQ(view.triangle_id(r, c), -1);
+          EXPECT_EQ(view.depth(r, c), 0.0f);
+        }
+      }
+    }
+    EXPECT_GT(on_grid_hits, 1000 / (stride * stride));
+  }
+  RenderOptions invalid;
+  invalid.point_stride_px = 2;
+  invalid.samples_per_axis = 2;
+  EXPECT_FALSE(invalid.Validate().ok());
+}
+
 TEST(CubeTest, FrontFaceDepthAndNormal) {
   const Mesh cube = MakeBox(50.0);
   const RayCaster caster(cube);

@@ -107,6 +107,9 @@ class ColorHistograms {
  private:
   int bins_per_channel_;
   int bin_width_;
+  // log2 of bins_per_channel_ and bin_width_ (both powers of two): Bin shifts, not divides.
+  int bins_shift_;
+  int width_shift_;
   std::vector<float> foreground_;
   std::vector<float> background_;
   bool foreground_initialized_ = false;
@@ -124,6 +127,9 @@ class ColorModel {
       const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const = 0;
   // True once an Update saw both foreground and background samples.
   virtual bool initialized() const = 0;
+  // True when Update reads the silhouette's contour; false when the mask is all it needs (the
+  // caller may then pass a silhouette without contour, see RenderSilhouetteMask).
+  virtual bool UsesContour() const = 0;
 };
 
 class GlobalColorModel final : public ColorModel {
@@ -134,6 +140,7 @@ class GlobalColorModel final : public ColorModel {
   std::vector<double> ForegroundPosteriors(
       const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const override;
   bool initialized() const override { return histograms_.initialized(); }
+  bool UsesContour() const override { return false; }
   const ColorHistograms& histograms() const { return histograms_; }
 
  private:
@@ -149,6 +156,7 @@ class LocalColorModel final : public ColorModel {
   std::vector<double> ForegroundPosteriors(
       const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const override;
   bool initialized() const override { return fallback_.initialized(); }
+  bool UsesContour() const override { return true; }
 
   // Regions of the last Update (centre in the image) and the number ever learned.
   struct ActiveRegion {

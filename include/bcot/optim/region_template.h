@@ -68,7 +68,9 @@ struct RegionTemplate {
 // cam_from_rig · T0 · objcentre_from_template (pass the one the colour model was updated
 // with, or use the overload that renders it). Errors (kInvalidConfig / kInvalidInput): invalid
 // options, invalid camera, image size different from the camera's, silhouette mask of another
-// size. An object outside the view gives an empty template (not an error).
+// size, stride_px not a multiple of the silhouette's point stride (its model points exist only
+// on that grid, see RenderSilhouette). An object outside the view gives an empty template (not an
+// error).
 StatusOr<RegionTemplate> BuildRegionTemplate(const RayCaster& caster, const Camera& camera,
                                              const Eigen::Isometry3d& cam_from_rig,
                                              const Eigen::Isometry3d& rig_from_objcentre,

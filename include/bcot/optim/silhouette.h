@@ -20,7 +20,8 @@ struct Silhouette {
   // camera.height × camera.width; 255 where the pixel centre's ray hits the mesh.
   cv::Mat1b mask;
   // The render the mask was pasted from (projected bounding box, one sample per pixel):
-  // point_in_object (O_t) of every inside pixel.
+  // point_in_object (O_t) of every inside pixel; depth, normals and triangle ids are not
+  // rendered (empty), nor point_in_object by RenderSilhouetteMask.
   RenderedView view;
   // Sub-pixel contour (outer boundaries and holes), outward normals, exact model points.
   std::vector<ContourPoint> contour;
@@ -28,9 +29,17 @@ struct Silhouette {
 
 // Renders the silhouette. `contour_options` must be valid (CHECKed by the ray caster). An
 // object outside the image or behind the camera gives an all-zero mask and no contour.
+// `point_stride_px` >= 1: view.point_in_object only at pixels whose column and row are
+// multiples of it (RenderOptions::point_stride_px), enough for a region template of that
+// stride (or a multiple) at a fraction of the closest-hit rays.
 Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
                             const Eigen::Isometry3d& cam_from_template,
-                            const ContourOptions& contour_options = {});
+                            const ContourOptions& contour_options = {}, int point_stride_px = 1);
+
+// The mask and render of RenderSilhouette without the contour (left empty): for consumers that
+// only read the mask (ColorModel::UsesContour() false), saving the contour extraction.
+Silhouette RenderSilhouetteMask(const RayCaster& caster, const Camera& camera,
+                                const Eigen::Isometry3d& cam_from_template);
 
 // Checks what the templates built on a silhouette need: a valid camera, an image of the
 // camera's size and a mask of the image's size (kInvalidConfig / kInvalidInput naming the

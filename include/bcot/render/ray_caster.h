@@ -10,10 +10,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <memory>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
-
-#include <opencv2/core.hpp>
 
 #include "bcot/core/camera.h"
 #include "bcot/render/mesh.h"
@@ -32,15 +31,29 @@ struct RenderOptions {
   // n×n rays per pixel on a regular grid: sample (i, j) of pixel (u, v) is at
   // (u − ½ + (i + ½)/n, v − ½ + (j + ½)/n). Output images are roi.size() × n. In [1, 16].
   int samples_per_axis = 1;
+  // Which images besides the mask Render fills (RenderedView); the others are left empty
+  // (0×0), saving their allocation, clearing and writes. Without any, the mask is traced with
+  // occlusion rays (any hit), cheaper than closest-hit rays. Default: all.
+  bool depth = true;
+  bool normal_in_cam = true;
+  bool point_in_object = true;
+  bool triangle_id = true;
+  // > 1: depth, normals, points and triangle ids only at pixels whose image column and row are
+  // multiples of point_stride_px (closest-hit rays on that grid; elsewhere the miss values),
+  // the mask at every pixel from occlusion rays. For templates that read the geometry on a
+  // pixel stride. >= 1; > 1 needs samples_per_axis = 1.
+  int point_stride_px = 1;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
 
-// One rendered view. All images have the same size (roi × samples_per_axis); the pixel (c, r)
-// of an image covers image position roi.tl() + ((c + ½)/n − ½, (r + ½)/n − ½).
+// One rendered view. All images have the same size (roi × samples_per_axis), except those
+// RenderOptions left out (empty); the pixel (c, r) of an image covers image position
+// roi.tl() + ((c + ½)/n − ½, (r + ½)/n − ½).
 struct RenderedView {
   cv::Rect roi;
   int samples_per_axis = 1;
+  int point_stride_px = 1;    // RenderOptions::point_stride_px it was rendered with
   cv::Mat1b mask;             // 255 where a ray hits the mesh, else 0
   cv::Mat1f depth;            // camera-frame z in mm; 0 where missed
   cv::Mat3f normal_in_cam;    // unit geometric normal facing the camera; 0 where missed

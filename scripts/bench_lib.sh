@@ -1,0 +1,13 @@
+# Shared by the Google Benchmark scripts (source it from the repository root).
+# run_google_benchmark NAME [benchmark flags]: configures build-bench/ (Release, benchmarks on),
+# builds tests/bench/NAME and runs it with Google Benchmark's console table on stdout and the
+# JSON report into build-bench/NAME.json (read it with scripts/bench_json.py).
+run_google_benchmark() {
+  local name=$1
+  shift
+  local dir=build-bench
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
+  cmake --build "$dir" --target "$name"
+  "$dir/tests/bench/$name" --benchmark_format=console \
+    --benchmark_out="$dir/$name.json" --benchmark_out_format=json "$@"
+}
