@@ -17,7 +17,7 @@
 # Usage: scripts/bench_precision.sh [frames per object, default 100] [energy-protocol frames,
 #        default 40]
 # Environment: BCOT_BENCH_WORK (sequence cache, default out/bench_precision),
-#              BCOT_BENCH_OBJECTS (comma-separated meshes; default 3 bundled + shared ones),
+#              BCOT_BENCH_OBJECTS (comma-separated meshes; default 2 bundled + 3 shared ones),
 #              BCOT_BENCH_ENERGY_OBJECTS (meshes of the energy protocol; `mesh+glossy` renders
 #              a glossy object), BCOT_BENCH_ONLY=energies (run only the energy protocol).
 set -euo pipefail
@@ -33,8 +33,11 @@ bench="$dir/tests/bench/precision_bench"
 
 objects=${BCOT_BENCH_OBJECTS:-}
 if [ -z "$objects" ]; then
-  objects="data/meshes/bunny.obj,data/meshes/spool.off,data/meshes/pinion.off"
-  for extra in ../shared/data/meshes/squirrel_demo_low.obj ../shared/data/meshes/dragknob.off; do
+  # Objects whose silhouettes determine all three rotation axes (no spool or dragknob: their
+  # rotation about the symmetry axis is unobservable, see the energy protocol below).
+  objects="data/meshes/bunny.obj,data/meshes/pinion.off"
+  for extra in ../shared/data/meshes/squirrel_demo_low.obj ../shared/data/meshes/handle.off \
+    ../shared/data/meshes/fandisk.off; do
     if [ -f "$extra" ]; then objects="$objects,$extra"; fi
   done
 fi
