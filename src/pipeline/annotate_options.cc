@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <utility>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bcot/core/yaml_util.h"
@@ -82,8 +82,8 @@ Status LocateViolations(const Status& status, const YamlMap& map) {
       }
     }
     const std::string value_and_rule = piece.substr(field.size());
-    located.push_back(fmt::format("{}: {}.{}{}", map.Location(key), map.path(), key,
-                                  value_and_rule));
+    located.push_back(
+        fmt::format("{}: {}.{}{}", map.Location(key), map.path(), key, value_and_rule));
   }
   std::string message = located[0];
   for (size_t i = 1; i < located.size(); ++i) message += "; " + located[i];
@@ -119,8 +119,7 @@ Status GetEnum(YamlMap& map, const std::string& key, const std::vector<std::stri
   return map.Error(key, fmt::format("'{}' is not one of {}", value, choices));
 }
 
-Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
-                 AnnotateOptions* o) {
+Status ParseInto(const YAML::Node& root_node, const std::string& source_name, AnnotateOptions* o) {
   if (!root_node.IsDefined() || root_node.IsNull()) return Status::Ok();
   YamlMap root(root_node, source_name, "", StatusCode::kInvalidConfig);
   BCOT_RETURN_IF_ERROR(root.Check());
@@ -220,8 +219,7 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
   BCOT_RETURN_IF_ERROR(ParseSection(
       root, "tracker",
       [&](YamlMap& m) -> Status {
-        BCOT_RETURN_IF_ERROR(
-            m.GetOptional("velocity_prediction", &o->tracker.velocity_prediction));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("velocity_prediction", &o->tracker.velocity_prediction));
         return m.GetOptional("bootstrap_passes", &o->tracker.bootstrap_passes);
       },
       [&]() -> Status {
@@ -254,6 +252,12 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
         int prior = static_cast<int>(window.prior);
         BCOT_RETURN_IF_ERROR(GetEnum(m, "prior", {"se3", "decoupled"}, &prior));
         window.prior = static_cast<MotionPriorForm>(prior);
+        for (auto [key, model] : {std::pair{"translation_model", &window.translation_model},
+                                  std::pair{"rotation_model", &window.rotation_model}}) {
+          int value = static_cast<int>(*model);
+          BCOT_RETURN_IF_ERROR(GetEnum(m, key, {"velocity", "acceleration"}, &value));
+          *model = static_cast<MotionModel>(value);
+        }
         for (auto [key, axes] : {std::pair{"rotation_sigma_deg", &window.rotation_sigma_deg},
                                  std::pair{"translation_sigma_mm", &window.translation_sigma_mm}}) {
           if (!m.Has(key)) continue;
@@ -264,7 +268,8 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
           }
           std::copy(values.begin(), values.end(), axes->begin());
         }
-        BCOT_RETURN_IF_ERROR(m.GetOptional("robust_scale", &window.robust_scale));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("robust_translation_mm", &window.robust_translation_mm));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("robust_rotation_deg", &window.robust_rotation_deg));
         return m.GetOptional("num_threads", &window.num_threads);
       },
       [&] { return window.Validate(); }));
@@ -379,11 +384,17 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
   line("overlap", number(w.overlap));
   line("iterations", number(w.iterations));
   line("prior", w.prior == MotionPriorForm::kSe3 ? "se3" : "decoupled");
-  line("rotation_sigma_deg", List(std::vector<double>(w.rotation_sigma_deg.begin(),
-                                                      w.rotation_sigma_deg.end()), number));
-  line("translation_sigma_mm", List(std::vector<double>(w.translation_sigma_mm.begin(),
-                                                        w.translation_sigma_mm.end()), number));
-  line("robust_scale", number(w.robust_scale));
+  for (auto [key, model] : {std::pair{"translation_model", w.translation_model},
+                            std::pair{"rotation_model", w.rotation_model}}) {
+    line(key, model == MotionModel::kConstantVelocity ? "velocity" : "acceleration");
+  }
+  line("rotation_sigma_deg",
+       List(std::vector<double>(w.rotation_sigma_deg.begin(), w.rotation_sigma_deg.end()), number));
+  line("translation_sigma_mm",
+       List(std::vector<double>(w.translation_sigma_mm.begin(), w.translation_sigma_mm.end()),
+            number));
+  line("robust_translation_mm", number(w.robust_translation_mm));
+  line("robust_rotation_deg", number(w.robust_rotation_deg));
   line("num_threads", number(w.num_threads));
   return y + FormatQualityOptions(o.quality);
 }
