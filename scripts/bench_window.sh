@@ -22,7 +22,9 @@
 # Environment: BCOT_BENCH_OBJECTS (space-separated name:seed:mesh, default bunny and pinion),
 #              BCOT_BENCH_WORK (sequence cache, default out/bench_window),
 #              BCOT_BENCH_BUILD (build dir, default build-bench),
-#              BCOT_BENCH_SET (extra --set overrides for the annotate config, space-separated).
+#              BCOT_BENCH_SET (extra --set overrides for the annotate config, space-separated),
+#              BCOT_BENCH_VARIANTS (space-separated LABEL:key=value,... window settings, each one
+#              more row per sequence from the same per-frame solves, e.g. "quadratic:robust_translation_mm=0,robust_rotation_deg=0").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 frames=${1:-60}
@@ -89,6 +91,7 @@ done
 
 sets=()
 for s in ${BCOT_BENCH_SET:-}; do sets+=(--set "$s"); done
+for v in ${BCOT_BENCH_VARIANTS:-}; do sets+=(--variant "$v"); done
 echo "== Temporal window: $config, window section as configured (enabled forced on), $frames frames"
 echo "   (step variants: speed doubles at frame $step)"
 "$bench" --config "$config" "${args[@]}" "${sets[@]}"

@@ -20,10 +20,16 @@ namespace bcot {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// Frames before and after a window that condition its priors.
-constexpr int kContext = 2;
 
 }  // namespace
+
+// A prior term spans 3 (velocity) or 4 (acceleration) frames, so a term touching the window
+// reaches that many frames − 1 out of it.
+int WindowProblemOptions::ContextFrames() const {
+  const bool acceleration = translation_model == MotionModel::kConstantAcceleration ||
+                            rotation_model == MotionModel::kConstantAcceleration;
+  return acceleration ? 3 : 2;
+}
 
 Vector6d WindowProblemOptions::PriorWeights() const {
   Vector6d weights;
@@ -32,6 +38,18 @@ Vector6d WindowProblemOptions::PriorWeights() const {
     weights[3 + k] = 1.0 / (rotation_sigma_deg[k] * kPi / 180.0);
   }
   return weights;
+}
+
+double WindowProblemOptions::TranslationCauchyScale() const {
+  const double sigma_mm =
+      std::cbrt(translation_sigma_mm[0] * translation_sigma_mm[1] * translation_sigma_mm[2]);
+  return robust_translation_mm / sigma_mm;
+}
+
+double WindowProblemOptions::RotationCauchyScale() const {
+  const double sigma_deg =
+      std::cbrt(rotation_sigma_deg[0] * rotation_sigma_deg[1] * rotation_sigma_deg[2]);
+  return robust_rotation_deg / sigma_deg;
 }
 
 Status WindowProblemOptions::Validate() const {
@@ -60,8 +78,11 @@ Status WindowProblemOptions::Validate() const {
                                        translation_sigma_mm[k], axes[k]));
     }
   }
-  if (!(robust_scale >= 0.0) || !std::isfinite(robust_scale)) {
-    violations.push_back(fmt::format("robust_scale = {}, must be finite and >= 0", robust_scale));
+  for (const auto& [name, value] : {std::pair{"robust_translation_mm", robust_translation_mm},
+                                    std::pair{"robust_rotation_deg", robust_rotation_deg}}) {
+    if (!(value >= 0.0) || !std::isfinite(value)) {
+      violations.push_back(fmt::format("{} = {}, must be finite and >= 0", name, value));
+    }
   }
   if (num_threads < 1) {
     violations.push_back(fmt::format("num_threads = {}, must be >= 1", num_threads));
@@ -85,8 +106,9 @@ WindowSummary WindowProblem::Solve(
   summary.end = end;
 
   // Parameter blocks for the window and its context frames [lo, hi).
-  const int lo = std::max(0, first - kContext);
-  const int hi = std::min(num_frames, end + kContext);
+  const int context = options_.ContextFrames();
+  const int lo = std::max(0, first - context);
+  const int hi = std::min(num_frames, end + context);
   std::vector<PoseParameters> parameters(hi - lo);
   std::vector<bool> free(hi - lo, false);
   Se3Manifold manifold;
@@ -119,14 +141,35 @@ WindowSummary WindowProblem::Solve(
   }
   if (summary.free_frames == 0) return summary;
 
+  // Two prior terms per span of frames, the translation rows and the rotation rows of the
+  // part's cost (the other part's weights zero), each with its own model and loss.
   const Vector6d weights = options_.PriorWeights();
-  for (int t = lo + 1; t + 1 < hi; ++t) {
-    if (!free[t - 1 - lo] && !free[t - lo] && !free[t + 1 - lo]) continue;
-    ceres::LossFunction* loss =
-        options_.robust_scale > 0.0 ? new ceres::CauchyLoss(options_.robust_scale) : nullptr;
-    problem.AddResidualBlock(new ConstantVelocityCost(weights, options_.prior), loss,
-                             parameters[t - 1 - lo].data(), parameters[t - lo].data(),
-                             parameters[t + 1 - lo].data());
+  struct Part {
+    Vector6d weights;
+    MotionModel model;
+    double scale;
+  };
+  Part parts[] = {{weights, options_.translation_model, options_.TranslationCauchyScale()},
+                  {weights, options_.rotation_model, options_.RotationCauchyScale()}};
+  parts[0].weights.tail<3>().setZero();
+  parts[1].weights.head<3>().setZero();
+  for (const Part& part : parts) {
+    const int span = part.model == MotionModel::kConstantAcceleration ? 4 : 3;
+    for (int t = lo; t + span <= hi; ++t) {
+      bool touches_free = false;
+      std::vector<double*> blocks;
+      for (int k = t; k < t + span; ++k) {
+        touches_free = touches_free || free[k - lo];
+        blocks.push_back(parameters[k - lo].data());
+      }
+      if (!touches_free) continue;
+      ceres::LossFunction* loss = part.scale > 0.0 ? new ceres::CauchyLoss(part.scale) : nullptr;
+      ceres::CostFunction* cost =
+          span == 4 ? static_cast<ceres::CostFunction*>(
+                          new ConstantAccelerationCost(part.weights, options_.prior))
+                    : new ConstantVelocityCost(part.weights, options_.prior);
+      problem.AddResidualBlock(cost, loss, blocks);
+    }
   }
 
   ceres::Solver::Options solver_options;
@@ -161,7 +204,8 @@ void WindowSmoother::Push(const Eigen::Isometry3d& rig_from_objcentre,
   const int size = problem_.options().size;
   if (size == 0) return;  // whole sequence: everything waits for Finish
   // Window [next_start_, next_start_ + W) runs once its look-ahead frames have arrived.
-  while (next_start_ + size + kContext <= static_cast<int>(poses_.size())) {
+  while (next_start_ + size + problem_.options().ContextFrames() <=
+         static_cast<int>(poses_.size())) {
     SolveWindow(next_start_ + size);
   }
 }

@@ -260,6 +260,12 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name, An
         int prior = static_cast<int>(window.prior);
         BCOT_RETURN_IF_ERROR(GetEnum(m, "prior", {"se3", "decoupled"}, &prior));
         window.prior = static_cast<MotionPriorForm>(prior);
+        for (auto [key, model] : {std::pair{"translation_model", &window.translation_model},
+                                  std::pair{"rotation_model", &window.rotation_model}}) {
+          int value = static_cast<int>(*model);
+          BCOT_RETURN_IF_ERROR(GetEnum(m, key, {"velocity", "acceleration"}, &value));
+          *model = static_cast<MotionModel>(value);
+        }
         for (auto [key, axes] : {std::pair{"rotation_sigma_deg", &window.rotation_sigma_deg},
                                  std::pair{"translation_sigma_mm", &window.translation_sigma_mm}}) {
           if (!m.Has(key)) continue;
@@ -270,7 +276,8 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name, An
           }
           std::copy(values.begin(), values.end(), axes->begin());
         }
-        BCOT_RETURN_IF_ERROR(m.GetOptional("robust_scale", &window.robust_scale));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("robust_translation_mm", &window.robust_translation_mm));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("robust_rotation_deg", &window.robust_rotation_deg));
         return m.GetOptional("num_threads", &window.num_threads);
       },
       [&] { return window.Validate(); }));
@@ -386,12 +393,17 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
   line("overlap", number(w.overlap));
   line("iterations", number(w.iterations));
   line("prior", w.prior == MotionPriorForm::kSe3 ? "se3" : "decoupled");
+  for (auto [key, model] : {std::pair{"translation_model", w.translation_model},
+                            std::pair{"rotation_model", w.rotation_model}}) {
+    line(key, model == MotionModel::kConstantVelocity ? "velocity" : "acceleration");
+  }
   line("rotation_sigma_deg",
        List(std::vector<double>(w.rotation_sigma_deg.begin(), w.rotation_sigma_deg.end()), number));
   line("translation_sigma_mm",
        List(std::vector<double>(w.translation_sigma_mm.begin(), w.translation_sigma_mm.end()),
             number));
-  line("robust_scale", number(w.robust_scale));
+  line("robust_translation_mm", number(w.robust_translation_mm));
+  line("robust_rotation_deg", number(w.robust_rotation_deg));
   line("num_threads", number(w.num_threads));
   return y + FormatQualityOptions(o.quality);
 }

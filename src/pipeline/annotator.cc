@@ -54,8 +54,8 @@ StatusOr<std::vector<TrackedView>> SelectViews(const Rig& rig, const ViewSelecti
         for (const RigCamera& camera : rig.cameras()) {
           known += (known.empty() ? "" : ", ") + camera.camera.name;
         }
-        return Status::InvalidConfig(fmt::format(
-            "views.cameras: no camera '{}' in the rig (cameras: {})", name, known));
+        return Status::InvalidConfig(
+            fmt::format("views.cameras: no camera '{}' in the rig (cameras: {})", name, known));
       }
       indices.push_back(index);
     }
@@ -79,8 +79,8 @@ StatusOr<cv::Mat3b> ReadImage(const std::string& path, const Camera& camera) {
   if (image.empty()) return Status::InvalidInput(path + ": cannot read the image");
   if (image.cols != camera.width || image.rows != camera.height) {
     return Status::InvalidInput(fmt::format("{}: image is {}x{}, camera '{}' in rig.yaml is {}x{}",
-                                            path, image.cols, image.rows, camera.name,
-                                            camera.width, camera.height));
+                                            path, image.cols, image.rows, camera.name, camera.width,
+                                            camera.height));
   }
   return cv::Mat3b(image);
 }
@@ -114,9 +114,8 @@ std::string AnnotateConfigHash(const AnnotateOptions& options) {
 StatusOr<std::string> SequenceInputHash(const Sequence& sequence) {
   Fnv1a hash;
   const std::string dir = sequence.dir;
-  for (const std::string& path :
-       {dir + "/rig.yaml", dir + "/object.yaml", sequence.object.mesh_path,
-        dir + "/init_pose.txt"}) {
+  for (const std::string& path : {dir + "/rig.yaml", dir + "/object.yaml",
+                                  sequence.object.mesh_path, dir + "/init_pose.txt"}) {
     StatusOr<std::string> content = ReadTextFile(path);
     if (!content.ok()) return content.status();
     hash.Add(*content);
@@ -134,14 +133,14 @@ StatusOr<std::string> SequenceInputHash(const Sequence& sequence) {
 
 StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
                                               const AnnotateOptions& options,
-                                              const AnnotateProgress& progress) {
+                                              const AnnotateProgress& progress,
+                                              const AnnotateFrameObserver& observer) {
   BCOT_RETURN_IF_ERROR(options.Validate());
   if (!sequence.init_rig_from_object.has_value()) {
     return Status::NotFound(sequence.dir + "/init_pose.txt: missing (the pose of frame 0)");
   }
   std::vector<int> rig_indices;
-  StatusOr<std::vector<TrackedView>> views =
-      SelectViews(sequence.rig, options.views, &rig_indices);
+  StatusOr<std::vector<TrackedView>> views = SelectViews(sequence.rig, options.views, &rig_indices);
   if (!views.ok()) return views.status();
   StatusOr<Mesh> mesh = Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm);
   if (!mesh.ok()) return mesh.status();
@@ -158,7 +157,8 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
   std::unique_ptr<WindowSmoother> window;
   if (options.window.enabled) window = std::make_unique<WindowSmoother>(options.window);
   std::vector<ViewLinearisation> linearisations;
-  std::vector<ViewLinearisation>* const templates_out = window ? &linearisations : nullptr;
+  std::vector<ViewLinearisation>* const templates_out =
+      window || observer ? &linearisations : nullptr;
 
   for (int frame = 0; frame < sequence.num_frames; ++frame) {
     std::vector<cv::Mat3b> images;
@@ -169,20 +169,18 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
       images.push_back(*image);
     }
     const auto start = std::chrono::steady_clock::now();
-    StatusOr<FrameSummary> summary = frame == 0
-                                         ? (*tracker)->Initialize(images, &rig_from_objcentre,
-                                                                  templates_out)
-                                         : (*tracker)->Track(images, &rig_from_objcentre,
-                                                             templates_out);
+    StatusOr<FrameSummary> summary =
+        frame == 0 ? (*tracker)->Initialize(images, &rig_from_objcentre, templates_out)
+                   : (*tracker)->Track(images, &rig_from_objcentre, templates_out);
     if (!summary.ok()) return summary.status();
     AnnotatedFrame record;
     record.summary = *summary;
     record.milliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count();
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (!summary->usable()) ++annotation.failed_frames;
     annotation.frames.push_back(record);
     annotation.rig_from_object.push_back(rig_from_objcentre * objcentre_from_template);
+    if (observer) observer(frame, rig_from_objcentre, linearisations);
     if (window) window->Push(rig_from_objcentre, std::move(linearisations));
     if (progress) progress(frame + 1, sequence.num_frames);
   }
@@ -224,10 +222,11 @@ Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,
       "# input_hash: {}\n",
       BCOT_VERSION, sequence.dir, input_hash);
   BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/config.resolved.yaml", header + config));
-  return WriteFileAtomic(out_dir + "/DONE",
-                         fmt::format("config_hash: {}\ninput_hash: {}\nframes: {}\nfailed_frames: {}\n",
-                                     AnnotateConfigHash(options), input_hash, annotation.frames.size(),
-                                     annotation.failed_frames));
+  return WriteFileAtomic(
+      out_dir + "/DONE",
+      fmt::format("config_hash: {}\ninput_hash: {}\nframes: {}\nfailed_frames: {}\n",
+                  AnnotateConfigHash(options), input_hash, annotation.frames.size(),
+                  annotation.failed_frames));
 }
 
 Status AnnotateSequenceDir(const std::string& sequence_dir, const std::string& out_dir,

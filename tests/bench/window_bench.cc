@@ -6,12 +6,16 @@
 // rows come from the same per-frame solves. Metrics: core/trajectory_metrics.h, at the mesh's
 // bounding-box centre, in the rig frame (cam0: z is depth). A sequence given as DIR:K has a
 // velocity step at frame K; the mean error over frames K−1..K+1 is then printed too.
+// Each --variant LABEL:key=value[,key=value...] (window.* keys without the section, e.g.
+// `q:robust_translation_mm=0`) adds a row from a further window with those options, run on the same
+// per-frame solves (AnnotateFrameObserver), so settings compare without re-solving.
 //
 // Usage: window_bench --config configs/annotate.yaml --sequence DIR[:K] [--sequence ...]
-//          [--set section.key=value]...
+//          [--set section.key=value]... [--variant LABEL:key=value,...]...
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -22,6 +26,7 @@
 #include "bcot/core/se3.h"
 #include "bcot/core/sequence.h"
 #include "bcot/core/trajectory_metrics.h"
+#include "bcot/optim/window_problem.h"
 #include "bcot/pipeline/annotate_options.h"
 #include "bcot/pipeline/annotator.h"
 #include "bcot/render/mesh.h"
@@ -51,6 +56,21 @@ Row Measure(const std::vector<Eigen::Isometry3d>& poses,
   return row;
 }
 
+// Per rig axis: mean over t of |a_t − a_gt,t| of the point's acceleration (mm/frame²).
+Eigen::Vector3d AxisJitterMm(const std::vector<Eigen::Isometry3d>& poses,
+                             const std::vector<Eigen::Isometry3d>& truth,
+                             const Eigen::Vector3d& centre) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  const int n = static_cast<int>(truth.size());
+  for (int t = 1; t + 1 < n; ++t) {
+    const auto acceleration = [&](const std::vector<Eigen::Isometry3d>& p) {
+      return Eigen::Vector3d(p[t + 1] * centre - 2.0 * (p[t] * centre) + p[t - 1] * centre);
+    };
+    sum += (acceleration(poses) - acceleration(truth)).cwiseAbs();
+  }
+  return n > 2 ? Eigen::Vector3d(sum / (n - 2)) : sum;
+}
+
 std::string Format(const std::string& name, const std::string& poses, const Row& r) {
   const std::string step =
       r.step_rotation_deg < 0.0
@@ -62,6 +82,38 @@ std::string Format(const std::string& name, const std::string& poses, const Row&
                      r.all.jitter_translation_mm, step);
 }
 
+struct Variant {
+  std::string label;
+  WindowProblemOptions window;
+};
+
+// LABEL:key=value,key=value → the config's window options with window.key=value overrides.
+StatusOr<Variant> ParseVariant(const std::string& config, std::vector<std::string> overrides,
+                               const std::string& spec) {
+  const size_t colon = spec.find(':');
+  Variant variant;
+  variant.label = spec.substr(0, colon);
+  if (colon != std::string::npos) {
+    std::string rest = spec.substr(colon + 1);
+    size_t begin = 0;
+    while (begin < rest.size()) {
+      size_t comma = rest.find(',', begin);
+      // A comma inside [..] belongs to a list value.
+      const size_t bracket = rest.find('[', begin);
+      if (bracket != std::string::npos && bracket < comma)
+        comma = rest.find(',', rest.find(']', bracket));
+      if (comma == std::string::npos) comma = rest.size();
+      overrides.push_back("window." + rest.substr(begin, comma - begin));
+      begin = comma + 1;
+    }
+  }
+  StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config, overrides);
+  if (!options.ok()) return options.status();
+  variant.window = options->window;
+  variant.window.enabled = true;
+  return variant;
+}
+
 int Run(int argc, char** argv) {
   CLI::App app("Temporal window benchmark (accuracy and jitter vs ground truth)");
   std::string config;
@@ -71,7 +123,19 @@ int Run(int argc, char** argv) {
   app.add_option("--sequence", sequences, "sequence dir, DIR:K for a velocity step at K")
       ->required();
   app.add_option("--set", overrides, "section.key=value overrides");
+  std::vector<std::string> variant_specs;
+  app.add_option("--variant", variant_specs,
+                 "LABEL:key=value,... further window settings on the same per-frame solves");
   CLI11_PARSE(app, argc, argv);
+  std::vector<Variant> variants;
+  for (const std::string& spec : variant_specs) {
+    StatusOr<Variant> variant = ParseVariant(config, overrides, spec);
+    if (!variant.ok()) {
+      std::fprintf(stderr, "%s\n", variant.status().message().c_str());
+      return 2;
+    }
+    variants.push_back(*variant);
+  }
   StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config, overrides);
   if (!options.ok()) {
     std::fprintf(stderr, "%s\n", options.status().message().c_str());
@@ -96,8 +160,17 @@ int Run(int argc, char** argv) {
     StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
     if (!mesh.ok()) return 1;
     const Eigen::Vector3d centre = mesh->objcentre_from_template().inverse().translation();
+    std::vector<WindowSmoother> smoothers;
+    smoothers.reserve(variants.size());
+    for (const Variant& variant : variants) smoothers.emplace_back(variant.window);
     const auto start = std::chrono::steady_clock::now();
-    StatusOr<SequenceAnnotation> annotation = AnnotateSequence(*sequence, *options);
+    StatusOr<SequenceAnnotation> annotation =
+        AnnotateSequence(*sequence, *options, {},
+                         [&smoothers](int, const Eigen::Isometry3d& rig_from_objcentre,
+                                      const std::vector<ViewLinearisation>& linearisations) {
+                           for (WindowSmoother& smoother : smoothers)
+                             smoother.Push(rig_from_objcentre, linearisations);
+                         });
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!annotation.ok()) {
@@ -112,12 +185,36 @@ int Run(int argc, char** argv) {
     const std::filesystem::path path(dir);
     const std::string name =
         path.parent_path().filename().string() + "/" + path.filename().string();
-    std::printf("%s\n", Format(name, "per-frame",
-                               Measure(annotation->per_frame_rig_from_object, *truth, centre, step))
-                            .c_str());
-    std::printf(
-        "%s\n",
-        Format(name, "window", Measure(annotation->rig_from_object, *truth, centre, step)).c_str());
+    // One table row per pose set; its per-axis translation jitter on stderr (diagnostics).
+    const auto print = [&](const std::string& label, const std::vector<Eigen::Isometry3d>& poses) {
+      std::printf("%s\n", Format(name, label, Measure(poses, *truth, centre, step)).c_str());
+      const Eigen::Vector3d axis_jitter = AxisJitterMm(poses, *truth, centre);
+      // How far the window moved the poses from the per-frame solves (the templates it
+      // re-uses are linearised there).
+      double shift_mm = 0.0, max_shift_mm = 0.0;
+      for (size_t t = 0; t < poses.size(); ++t) {
+        const double d =
+            (poses[t] * centre - annotation->per_frame_rig_from_object[t] * centre).norm();
+        shift_mm += d / static_cast<double>(poses.size());
+        max_shift_mm = std::max(max_shift_mm, d);
+      }
+      std::fprintf(stderr,
+                   "%s %s: translation jitter per rig axis x %.4f y %.4f z %.4f mm; centre moved "
+                   "by the window mean %.4f max %.4f mm\n",
+                   name.c_str(), label.c_str(), axis_jitter.x(), axis_jitter.y(), axis_jitter.z(),
+                   shift_mm, max_shift_mm);
+    };
+    print("per-frame", annotation->per_frame_rig_from_object);
+    print("window", annotation->rig_from_object);
+    const Eigen::Isometry3d objcentre_from_template = mesh->objcentre_from_template();
+    for (size_t k = 0; k < variants.size(); ++k) {
+      smoothers[k].Finish();
+      std::vector<Eigen::Isometry3d> poses;
+      for (const Eigen::Isometry3d& pose : smoothers[k].rig_from_objcentre()) {
+        poses.push_back(pose * objcentre_from_template);
+      }
+      print(variants[k].label, poses);
+    }
     std::fprintf(stderr, "%s: %zu frames, %d failed, %.1f s (per-frame solves + window)\n",
                  dir.c_str(), annotation->frames.size(), annotation->failed_frames, seconds);
     std::fflush(stdout);

@@ -67,38 +67,31 @@ std::vector<Triple> Triples() {
   return triples;
 }
 
-// ceres::GradientChecker through the Se3Manifold of all three blocks: numeric differentiation
-// along X ⊕ δ against the analytic SE(3) Jacobians of the header.
-class ConstantVelocityCostFormTest : public ::testing::TestWithParam<MotionPriorForm> {};
-
-TEST_P(ConstantVelocityCostFormTest, GradientCheckerAcceptsEveryBlock) {
-  const ConstantVelocityCost cost(TestWeights(), GetParam());
+// ceres::GradientChecker through the Se3Manifold of every block: numeric differentiation
+// along X ⊕ δ against the analytic SE(3) Jacobians of the header, at one set of poses.
+void ExpectGradientCheckerAccepts(const ceres::CostFunction& cost, const std::string& name,
+                                  const std::vector<Eigen::Isometry3d>& poses) {
   Se3Manifold manifold;
-  std::vector<const ceres::Manifold*> manifolds = {&manifold, &manifold, &manifold};
+  std::vector<const ceres::Manifold*> manifolds(poses.size(), &manifold);
   ceres::NumericDiffOptions numeric_options;
   // Ridders' default first step is 1% of each ambient coordinate: 0.01 of a quaternion
   // coefficient (~1°) or 5 mm of a 500 mm translation; the extrapolation from there leaves
   // ~1e-4 relative error on the rotation columns. 1e-4 keeps the steps in the linear regime.
   numeric_options.ridders_relative_initial_step_size = 1e-4;
   ceres::GradientChecker checker(&cost, &manifolds, numeric_options);
-  for (const Triple& triple : Triples()) {
-    PoseParameters a = ToPoseParameters(triple.a);
-    PoseParameters b = ToPoseParameters(triple.b);
-    PoseParameters c = ToPoseParameters(triple.c);
-    const double* parameters[] = {a.data(), b.data(), c.data()};
-    ceres::GradientChecker::ProbeResults results;
-    // Ceres' relative error is per entry: 1e-5 as in region_cost_test.cc, since entries of
-    // ~1e-5 (next to entries of ~300) carry ~1e-11 of numeric round-off.
-    EXPECT_TRUE(checker.Probe(parameters, 1e-5, &results))
-        << triple.name << ": max relative error " << results.maximum_relative_error << "\n"
-        << results.error_log.substr(0, 4000);
-    std::printf("[ %s ] max relative Jacobian error %.2e\n", triple.name.c_str(),
-                results.maximum_relative_error);
-  }
+  std::vector<PoseParameters> blocks;
+  for (const Eigen::Isometry3d& pose : poses) blocks.push_back(ToPoseParameters(pose));
+  std::vector<const double*> parameters;
+  for (const PoseParameters& block : blocks) parameters.push_back(block.data());
+  ceres::GradientChecker::ProbeResults results;
+  // Ceres' relative error is per entry: 1e-5 as in region_cost_test.cc, since entries of
+  // ~1e-5 (next to entries of ~300) carry ~1e-11 of numeric round-off.
+  EXPECT_TRUE(checker.Probe(parameters.data(), 1e-5, &results))
+      << name << ": max relative error " << results.maximum_relative_error << "\n"
+      << results.error_log.substr(0, 4000);
+  std::printf("[ %s ] max relative Jacobian error %.2e\n", name.c_str(),
+              results.maximum_relative_error);
 }
-
-INSTANTIATE_TEST_SUITE_P(Forms, ConstantVelocityCostFormTest,
-                         ::testing::Values(MotionPriorForm::kSe3, MotionPriorForm::kDecoupled));
 
 // kDecoupled is zero when the centre moves on a straight line at constant speed in the rig
 // while the object spins at constant body angular velocity, and equals W times the change of
@@ -160,6 +153,110 @@ TEST(ConstantVelocityCostTest, ZeroOnConstantVelocityAndWeightedVelocityChangeOt
     const Vector6d expected = -TestWeights().cwiseProduct(kick);
     EXPECT_LT((residual - expected).cwiseAbs().maxCoeff(), 1e-8) << trial;
     EXPECT_LT((VelocityChange(a, b, c_kicked) + kick).cwiseAbs().maxCoeff(), 1e-10) << trial;
+  }
+}
+
+// Seeded quadruples for ConstantAccelerationCost: the triples of Triples() extended by one
+// more step of the same size.
+struct Quad {
+  std::string name;
+  Eigen::Isometry3d a, b, c, d;
+};
+
+std::vector<Quad> Quads() {
+  std::mt19937 rng(41);
+  std::vector<Quad> quads;
+  for (const Triple& triple : Triples()) {
+    const double step_rad =
+        LogSO3(Eigen::Matrix3d(triple.b.linear().transpose() * triple.c.linear())).norm();
+    const double step_mm = (triple.c.translation() - triple.b.translation()).norm();
+    const Eigen::Isometry3d d =
+        triple.c * Pose(step_rad * RandomUnit(rng), step_mm * RandomUnit(rng));
+    quads.push_back({triple.name, triple.a, triple.b, triple.c, d});
+  }
+  return quads;
+}
+
+// Both priors, both forms: every block of every seeded triple / quadruple.
+class MotionPriorCostFormTest : public ::testing::TestWithParam<MotionPriorForm> {};
+
+TEST_P(MotionPriorCostFormTest, GradientCheckerAcceptsEveryBlock) {
+  const ConstantVelocityCost velocity(TestWeights(), GetParam());
+  for (const Triple& triple : Triples()) {
+    ExpectGradientCheckerAccepts(velocity, "velocity " + triple.name,
+                                 {triple.a, triple.b, triple.c});
+  }
+  const ConstantAccelerationCost acceleration(TestWeights(), GetParam());
+  for (const Quad& quad : Quads()) {
+    ExpectGradientCheckerAccepts(acceleration, "acceleration " + quad.name,
+                                 {quad.a, quad.b, quad.c, quad.d});
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Forms, MotionPriorCostFormTest,
+                         ::testing::Values(MotionPriorForm::kSe3, MotionPriorForm::kDecoupled));
+
+// The residual of a 6-residual prior at `poses` (no Jacobians).
+Vector6d Residual(const ceres::CostFunction& cost, const std::vector<Eigen::Isometry3d>& poses) {
+  std::vector<PoseParameters> blocks;
+  for (const Eigen::Isometry3d& pose : poses) blocks.push_back(ToPoseParameters(pose));
+  std::vector<const double*> parameters;
+  for (const PoseParameters& block : blocks) parameters.push_back(block.data());
+  Vector6d residual;
+  EXPECT_TRUE(cost.Evaluate(parameters.data(), residual.data(), nullptr));
+  return residual;
+}
+
+// kDecoupled is zero when the centre moves with constant acceleration in the rig and the body
+// angular velocity changes by the same rotation vector every frame; a kick of the last step
+// shows up as W times the kick. The velocity prior is not zero on that motion.
+TEST(ConstantAccelerationCostTest, DecoupledIsZeroOnConstantAcceleration) {
+  const ConstantAccelerationCost cost(TestWeights(), MotionPriorForm::kDecoupled);
+  std::mt19937 rng(43);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Eigen::Vector3d omega = 0.05 * RandomUnit(rng), alpha = 0.01 * RandomUnit(rng);
+    const Eigen::Vector3d velocity = 3.0 * RandomUnit(rng), acceleration = 0.8 * RandomUnit(rng);
+    std::vector<Eigen::Isometry3d> poses = {Pose(2.5 * RandomUnit(rng), 400.0 * RandomUnit(rng))};
+    const auto step = [&](int k, const Eigen::Vector3d& kick_mm, const Eigen::Vector3d& kick_rad) {
+      const Eigen::Isometry3d& x = poses.back();
+      poses.push_back(
+          Pose(LogSO3(Eigen::Matrix3d(x.linear() * ExpSO3(omega + k * alpha + kick_rad))),
+               x.translation() + velocity + k * acceleration + kick_mm));
+    };
+    for (int k = 0; k < 3; ++k) step(k, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+    EXPECT_LT(Residual(cost, poses).cwiseAbs().maxCoeff(), 1e-9) << trial;
+    EXPECT_GT(VelocityChange(poses[0], poses[1], poses[2], MotionPriorForm::kDecoupled).norm(), 0.1)
+        << trial;
+
+    const Eigen::Vector3d kick_mm(0.5, -0.2, 0.1), kick_rad(0.002, 0.0, -0.001);
+    poses.pop_back();
+    step(2, kick_mm, kick_rad);
+    const Vector6d residual = Residual(cost, poses);
+    Vector6d expected;
+    expected << kick_mm, kick_rad;
+    expected = TestWeights().cwiseProduct(expected);
+    EXPECT_LT((residual - expected).cwiseAbs().maxCoeff(), 1e-7) << trial;
+    EXPECT_LT(
+        (AccelerationChange(poses[0], poses[1], poses[2], poses[3], MotionPriorForm::kDecoupled) -
+         TestWeights().cwiseInverse().cwiseProduct(residual))
+            .cwiseAbs()
+            .maxCoeff(),
+        1e-12)
+        << trial;
+  }
+}
+
+// kSe3 is zero when the body twist per frame changes by the same twist every frame.
+TEST(ConstantAccelerationCostTest, Se3IsZeroOnConstantTwistChange) {
+  const ConstantAccelerationCost cost(TestWeights());
+  std::mt19937 rng(47);
+  for (int trial = 0; trial < 5; ++trial) {
+    Vector6d twist, change;
+    twist << 5.0 * RandomUnit(rng), 0.1 * RandomUnit(rng);
+    change << 0.5 * RandomUnit(rng), 0.01 * RandomUnit(rng);
+    std::vector<Eigen::Isometry3d> poses = {Pose(2.5 * RandomUnit(rng), 400.0 * RandomUnit(rng))};
+    for (int k = 0; k < 3; ++k) poses.push_back(poses.back() * ExpSE3(twist + k * change));
+    EXPECT_LT(Residual(cost, poses).cwiseAbs().maxCoeff(), 1e-9) << trial;
   }
 }
 

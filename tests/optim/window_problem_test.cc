@@ -28,6 +28,7 @@ TEST(WindowProblemOptionsTest, ValidateListsEveryViolation) {
   options.iterations = 0;
   options.rotation_sigma_deg[1] = 0.0;
   options.translation_sigma_mm[2] = -1.0;
+  options.robust_rotation_deg = -0.5;
   options.num_threads = 0;
   const Status status = options.Validate();
   ASSERT_EQ(status.code(), StatusCode::kInvalidConfig);
@@ -36,15 +37,38 @@ TEST(WindowProblemOptionsTest, ValidateListsEveryViolation) {
   EXPECT_THAT(status.message(), HasSubstr("iterations = 0"));
   EXPECT_THAT(status.message(), HasSubstr("rotation_sigma_deg = 0 (y)"));
   EXPECT_THAT(status.message(), HasSubstr("translation_sigma_mm = -1 (z)"));
+  EXPECT_THAT(status.message(), HasSubstr("robust_rotation_deg = -0.5"));
   EXPECT_THAT(status.message(), HasSubstr("num_threads = 0"));
 }
 
+// The prior reaches 2 frames beyond a window with constant-velocity models, 3 as soon as one
+// part holds a constant acceleration; the Cauchy scales are the thresholds in σ units.
+TEST(WindowProblemOptionsTest, ContextFramesAndCauchyScales) {
+  WindowProblemOptions options;
+  options.translation_model = MotionModel::kConstantVelocity;
+  options.rotation_model = MotionModel::kConstantVelocity;
+  EXPECT_EQ(options.ContextFrames(), 2);
+  options.rotation_model = MotionModel::kConstantAcceleration;
+  EXPECT_EQ(options.ContextFrames(), 3);
+  options.translation_sigma_mm = {0.1, 0.2, 0.4};  // geometric mean 0.2
+  options.robust_translation_mm = 0.5;
+  EXPECT_NEAR(options.TranslationCauchyScale(), 2.5, 1e-12);
+  options.rotation_sigma_deg = {0.1, 0.1, 0.1};
+  options.robust_rotation_deg = 0.0;
+  EXPECT_EQ(options.RotationCauchyScale(), 0.0);
+}
+
 // The sliding scheme: windows of W frames stepping by W − overlap cover every frame, and the
-// smoother never holds more than W + 2 frames of templates while streaming.
-TEST(WindowSmootherTest, WindowsCoverTheSequenceWithBoundedMemory) {
+// smoother never holds more than W + C frames of templates while streaming (C the context of
+// the priors: 2 for constant velocity, 3 for constant acceleration).
+class WindowSmootherTest : public ::testing::TestWithParam<MotionModel> {};
+
+TEST_P(WindowSmootherTest, WindowsCoverTheSequenceWithBoundedMemory) {
   WindowProblemOptions options;
   options.size = 8;
   options.overlap = 3;
+  options.translation_model = GetParam();
+  options.rotation_model = MotionModel::kConstantVelocity;
   WindowSmoother smoother(options);
   int most_buffered = 0;
   for (int frame = 0; frame < 41; ++frame) {
@@ -52,7 +76,7 @@ TEST(WindowSmootherTest, WindowsCoverTheSequenceWithBoundedMemory) {
     most_buffered = std::max(most_buffered, smoother.buffered_frames());
   }
   smoother.Finish();
-  EXPECT_LE(most_buffered, options.size + 2);
+  EXPECT_LE(most_buffered, options.size + options.ContextFrames());
   EXPECT_EQ(smoother.buffered_frames(), 0);
   const std::vector<WindowSummary>& windows = smoother.windows();
   ASSERT_FALSE(windows.empty());
@@ -66,6 +90,10 @@ TEST(WindowSmootherTest, WindowsCoverTheSequenceWithBoundedMemory) {
   }
   EXPECT_EQ(smoother.rig_from_objcentre().size(), 41u);
 }
+
+INSTANTIATE_TEST_SUITE_P(Models, WindowSmootherTest,
+                         ::testing::Values(MotionModel::kConstantVelocity,
+                                           MotionModel::kConstantAcceleration));
 
 // A binocular sequence rendered once for the suite: the object centre moves on a straight line
 // at v1 and the object spins at constant body angular velocity ω1 for frames 0..kStep−1, then
@@ -130,15 +158,13 @@ class WindowSequenceTest : public test::BunnyCasterTest {
     return smoother.rig_from_objcentre();
   }
 
-  // Windows of 8 frames, 3 shared: three windows over the sequence, one across the step.
+  // Windows of 8 frames, 3 shared: three windows over the sequence, one across the step; the
+  // prior as configured by default.
   static WindowProblemOptions SlidingOptions() {
     WindowProblemOptions options;
     options.enabled = true;
     options.size = 8;
     options.overlap = 3;
-    options.rotation_sigma_deg = {0.05, 0.05, 0.05};
-    options.translation_sigma_mm = {0.05, 0.05, 0.05};
-    options.robust_scale = 2.0;
     return options;
   }
 
@@ -149,13 +175,25 @@ class WindowSequenceTest : public test::BunnyCasterTest {
 
 // On the two constant-velocity stretches (frames 0..kStep−1 and kStep..kFrames−1, each with
 // its own velocity) the window at least halves the jitter of the per-frame solves and does not
-// raise their mean error.
+// raise their mean error. The mean error leaves out the kink frame kStep−1, which
+// VelocityStepDoesNotLag judges: the robust prior still pulls it by a few hundredths of a mm
+// (the Cauchy loss's pull on a large change fades as c²/r, never to 0, and the
+// constant-acceleration translation prior sees the kink in three spans of four frames).
 TEST_F(WindowSequenceTest, SlidingWindowHalvesJitterWithoutRaisingTheError) {
   const std::vector<Eigen::Isometry3d> smoothed = Smooth(SlidingOptions());
   const Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // poses are rig_from_objcentre
   for (const auto& [first, end] : {std::pair{0, kStep}, std::pair{kStep, kFrames}}) {
-    const TrajectoryErrors before = CompareTrajectories(*per_frame_, *truth_, centre, first, end);
-    const TrajectoryErrors after = CompareTrajectories(smoothed, *truth_, centre, first, end);
+    TrajectoryErrors before = CompareTrajectories(*per_frame_, *truth_, centre, first, end);
+    TrajectoryErrors after = CompareTrajectories(smoothed, *truth_, centre, first, end);
+    const int error_end = end == kStep ? kStep - 1 : end;
+    const TrajectoryErrors before_error =
+        CompareTrajectories(*per_frame_, *truth_, centre, first, error_end);
+    const TrajectoryErrors after_error =
+        CompareTrajectories(smoothed, *truth_, centre, first, error_end);
+    before.rotation_deg = before_error.rotation_deg;
+    before.translation_mm = before_error.translation_mm;
+    after.rotation_deg = after_error.rotation_deg;
+    after.translation_mm = after_error.translation_mm;
     std::printf(
         "frames [%d, %d): jitter per-frame %.4f deg %.4f mm -> window %.4f deg %.4f mm; "
         "mean error %.4f deg %.4f mm -> %.4f deg %.4f mm\n",
@@ -173,7 +211,6 @@ TEST_F(WindowSequenceTest, SlidingWindowHalvesJitterWithoutRaisingTheError) {
 // kStep−1) the window's mean error is not worse than the per-frame mean error by more than
 // 0.02° / 0.02 mm, and no single frame is worse by more than 0.05° / 0.05 mm (about half the
 // per-frame mean error of this scene: single frames carry per-frame noise of that size).
-// A quadratic prior (robust_scale 0) lags here by 0.2° / 0.3 mm.
 TEST_F(WindowSequenceTest, VelocityStepDoesNotLag) {
   const std::vector<Eigen::Isometry3d> smoothed = Smooth(SlidingOptions());
   double before_deg = 0.0, before_mm = 0.0, after_deg = 0.0, after_mm = 0.0;

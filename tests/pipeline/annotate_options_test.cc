@@ -175,7 +175,9 @@ TEST(AnnotateOptionsTest, WindowSectionParsesAndNamesBadValues) {
   const StatusOr<AnnotateOptions> options = ParseText(
       "window:\n  enabled: true\n  prior: se3\n  size: 12\n  overlap: 4\n  rotation_sigma_deg: "
       "[0.1, 0.2, "
-      "0.3]\n  translation_sigma_mm: [1, 2, 3]\n  robust_scale: 0\n");
+      "0.3]\n  translation_sigma_mm: [1, 2, 3]\n  robust_translation_mm: 0\n  "
+      "robust_rotation_deg: 0.7\n  translation_model: velocity\n  rotation_model: "
+      "acceleration\n");
   ASSERT_TRUE(options.ok()) << options.status().message();
   EXPECT_TRUE(options->window.enabled);
   EXPECT_EQ(options->window.size, 12);
@@ -183,7 +185,10 @@ TEST(AnnotateOptionsTest, WindowSectionParsesAndNamesBadValues) {
   EXPECT_EQ(options->window.overlap, 4);
   EXPECT_DOUBLE_EQ(options->window.rotation_sigma_deg[2], 0.3);
   EXPECT_DOUBLE_EQ(options->window.translation_sigma_mm[1], 2.0);
-  EXPECT_DOUBLE_EQ(options->window.robust_scale, 0.0);
+  EXPECT_DOUBLE_EQ(options->window.robust_translation_mm, 0.0);
+  EXPECT_DOUBLE_EQ(options->window.robust_rotation_deg, 0.7);
+  EXPECT_EQ(options->window.translation_model, MotionModel::kConstantVelocity);
+  EXPECT_EQ(options->window.rotation_model, MotionModel::kConstantAcceleration);
   // Round trip of a non-default window section.
   EXPECT_EQ(FormatAnnotateOptions(*ParseText(FormatAnnotateOptions(*options))),
             FormatAnnotateOptions(*options));
@@ -194,6 +199,13 @@ TEST(AnnotateOptionsTest, WindowSectionParsesAndNamesBadValues) {
       HasSubstr("run.yaml:3: window.translation_sigma_mm = 0 (y)"));
   EXPECT_THAT(ParseText("window:\n  rotation_sigma_deg: [1, 2]\n").status().message(),
               HasSubstr("run.yaml:2: window.rotation_sigma_deg: has 2 values, expected 3"));
+  for (const auto& [text, message] :
+       {std::pair{"window:\n  robust_translation_mm: -1\n", "window.robust_translation_mm = -1"},
+        std::pair{"window:\n  translation_model: jerk\n",
+                  "'jerk' is not one of velocity | acceleration"},
+        std::pair{"window:\n  robust_scale: 2\n", "robust_scale"}}) {
+    EXPECT_THAT(ParseText(text).status().message(), HasSubstr(message)) << text;
+  }
   EXPECT_THAT(ParseText("window:\n  enabled: maybe\n").status().message(), HasSubstr("enabled"));
 }
 

@@ -37,6 +37,23 @@
 //   ∂r/∂δa = −W·[[R_A, 0], [0, J_l⁻¹(φ₁)]],  ∂r/∂δb = W·[[2R_B, 0], [0, J_r⁻¹(φ₁) + J_l⁻¹(φ₂)]],
 //   ∂r/∂δc = −W·[[R_C, 0], [0, J_r⁻¹(φ₂)]].
 //
+// ConstantAccelerationCost — the same on four consecutive poses A, B, C, D (T_{t−1} … T_{t+2}):
+// with the per-step velocities v₁ (A→B), v₂ (B→C), v₃ (C→D) of either form (ξ of kSe3, or the
+// centre step in the rig and the body rotation vector φ of kDecoupled),
+//   r = W · (v₁ − 2v₂ + v₃)          (the change of acceleration per frame, "jerk")
+// zero on constant acceleration, e.g. kDecoupled: the centre on c_t = c₀ + v·t + ½a·t² and a
+// spin whose body angular velocity changes by the same rotation vector every frame. Why: a hand
+// accelerates smoothly; on the handheld bench the true change of the centre's velocity between
+// frames is 0.15–0.5 mm/frame² (median; p90 up to 0.5), 2–7× the acceleration noise of the
+// per-frame solves, so a constant-velocity prior tight enough to remove that noise bends the
+// real motion; the true change of acceleration is 3–7× smaller (median 0.02–0.06 mm/frame³),
+// while per-frame noise is amplified more by the third difference (variance 20σ² vs 6σ²).
+// Jacobians: as above with ∂v_k/∂δ at the start of step k = −J_l⁻¹(v_k) (kSe3 / SO(3) part) or
+// −R (centre), and at its end J_r⁻¹(v_k) or R:
+//   ∂r/∂δa = W·(−J_l⁻¹(v₁)),              ∂r/∂δb = W·(J_r⁻¹(v₁) + 2J_l⁻¹(v₂)),
+//   ∂r/∂δc = W·(−2J_r⁻¹(v₂) − J_l⁻¹(v₃)), ∂r/∂δd = W·J_r⁻¹(v₃),
+// with the centre blocks −R_A, 3R_B, −3R_C, R_D in kDecoupled.
+//
 // Thread safety: Evaluate is const; one instance may be evaluated concurrently.
 #pragma once
 
@@ -52,16 +69,29 @@ enum class MotionPriorForm {
   kDecoupled,  // W·(centre acceleration in the rig frame, body angular-velocity change)
 };
 
-class ConstantVelocityCost final
-    : public ceres::SizedCostFunction<6, kPoseAmbientSize, kPoseAmbientSize, kPoseAmbientSize> {
+// The SizedCostFunction of a prior on kPoses consecutive poses (3 or 4).
+template <int kPoses>
+struct MotionPriorCostBase;
+template <>
+struct MotionPriorCostBase<3> {
+  using type = ceres::SizedCostFunction<6, kPoseAmbientSize, kPoseAmbientSize, kPoseAmbientSize>;
+};
+template <>
+struct MotionPriorCostBase<4> {
+  using type = ceres::SizedCostFunction<6, kPoseAmbientSize, kPoseAmbientSize, kPoseAmbientSize,
+                                        kPoseAmbientSize>;
+};
+
+// ConstantVelocityCost (kPoses = 3) and ConstantAccelerationCost (kPoses = 4).
+template <int kPoses>
+class MotionPriorCost final : public MotionPriorCostBase<kPoses>::type {
  public:
   // `weights` = diag(W) as above: (w_ρx, w_ρy, w_ρz) in 1/mm, then (w_φx, w_φy, w_φz) in 1/rad;
   // each finite and >= 0 (CHECKed).
   // Translation weights act on the rig axes in kDecoupled, on the object axes in kSe3.
-  explicit ConstantVelocityCost(const Vector6d& weights,
-                                MotionPriorForm form = MotionPriorForm::kSe3);
+  explicit MotionPriorCost(const Vector6d& weights, MotionPriorForm form = MotionPriorForm::kSe3);
 
-  // parameters = {A, B, C}.
+  // parameters = the kPoses consecutive poses {A, B, C(, D)}.
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
 
@@ -72,8 +102,19 @@ class ConstantVelocityCost final
   MotionPriorForm form_;
 };
 
-// The unweighted residual of `form` (r / W): the change of velocity between the two steps.
+extern template class MotionPriorCost<3>;
+extern template class MotionPriorCost<4>;
+using ConstantVelocityCost = MotionPriorCost<3>;
+using ConstantAccelerationCost = MotionPriorCost<4>;
+
+// The unweighted residual of ConstantVelocityCost (r / W): the change of velocity between the
+// two steps.
 Vector6d VelocityChange(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
                         const Eigen::Isometry3d& c, MotionPriorForm form = MotionPriorForm::kSe3);
+
+// The unweighted residual of ConstantAccelerationCost: v₁ − 2v₂ + v₃.
+Vector6d AccelerationChange(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
+                            const Eigen::Isometry3d& c, const Eigen::Isometry3d& d,
+                            MotionPriorForm form = MotionPriorForm::kSe3);
 
 }  // namespace bcot

@@ -23,8 +23,8 @@
 //                                     (pipeline/quality_report.h)
 //   window:  WindowProblemOptions     enabled, size, overlap, iterations, prior (decoupled |
 //                                     se3), rotation_sigma_deg
-//                                     [x, y, z], translation_sigma_mm [x, y, z], robust_scale,
-//                                     num_threads
+//                                     [x, y, z], translation_sigma_mm [x, y, z],
+//                                     robust_translation_mm, robust_rotation_deg, num_threads
 //
 // Unknown keys, wrong types and out-of-range values are kInvalidConfig errors naming
 // file:line: section.key. configs/annotate.yaml is the annotation setting (5 rounds × 7

@@ -3,7 +3,7 @@
 // (colour bootstrap + joint solve), every later frame from the previous frame's pose by
 // MultiViewTracker::Track. With `window.enabled`, the temporal smoothing window
 // (window_problem.h) then refines the poses, streaming: it runs while the frames are solved and
-// keeps the templates of at most window.size + 2 frames.
+// keeps the templates of at most window.size + window.ContextFrames() (2 or 3) frames.
 //
 // Outputs in `out_dir`, each written atomically (temp + rename):
 //   rig_from_object.txt     one pose line per frame (O_t, mm)
@@ -40,22 +40,30 @@ struct AnnotatedFrame {
 };
 
 struct SequenceAnnotation {
-  std::vector<std::string> view_names;                // the cameras used, in solve order
-  std::vector<Eigen::Isometry3d> rig_from_object;     // per frame, O_t (final)
+  std::vector<std::string> view_names;                       // the cameras used, in solve order
+  std::vector<Eigen::Isometry3d> rig_from_object;            // per frame, O_t (final)
   std::vector<Eigen::Isometry3d> per_frame_rig_from_object;  // before the window, O_t
-  std::vector<AnnotatedFrame> frames;                 // per frame
-  int failed_frames = 0;                              // frames whose solve was not usable
+  std::vector<AnnotatedFrame> frames;                        // per frame
+  int failed_frames = 0;                                     // frames whose solve was not usable
 };
 
 // Called after every frame with (frames done, total frames).
 using AnnotateProgress = std::function<void(int done, int total)>;
+// Called after every frame's solve with the frame index, its per-frame rig_from_objcentre and
+// the level-0 templates of its last round (empty when the solve failed), i.e. what the window
+// receives; lets a caller run further windows on the same solves (tests/bench/window_bench.cc).
+// The templates are shared and immutable; the vector is valid during the call only.
+using AnnotateFrameObserver =
+    std::function<void(int frame, const Eigen::Isometry3d& rig_from_objcentre,
+                       const std::vector<ViewLinearisation>& linearisations)>;
 
 // Solves every frame. Errors: invalid options (kInvalidConfig); a selected camera missing from
 // the rig (kInvalidConfig); the mesh does not load, an image does not read or has the wrong
 // size, no init_pose.txt (kInvalidInput / kNotFound, naming the file).
 StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
                                               const AnnotateOptions& options,
-                                              const AnnotateProgress& progress = {});
+                                              const AnnotateProgress& progress = {},
+                                              const AnnotateFrameObserver& observer = {});
 
 // A hash (16 hex digits) of everything a sequence's annotation depends on: rig.yaml,
 // object.yaml, the mesh file, init_pose.txt and every image file's name and size.
