@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 
 #include <Eigen/Geometry>
+#include <random>
 #include <string>
 
 namespace bcot::test {
@@ -34,6 +35,14 @@ void WriteText(const std::string& path, const std::string& content);
 
 // Runs a shell command, returns its exit code; stdout+stderr go to `output` when non-null.
 int RunCommand(const std::string& command, std::string* output = nullptr);
+
+inline constexpr double kPi = 3.14159265358979323846;
+
+// A unit vector in a uniformly random direction (normalised standard normal draws).
+inline Eigen::Vector3d RandomUnitVector(std::mt19937& rng) {
+  std::normal_distribution<double> normal;
+  return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+}
 
 // Rotation (deg) and translation (mm) distance between two poses.
 double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);

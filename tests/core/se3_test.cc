@@ -4,15 +4,12 @@
 
 #include <random>
 
+#include "test_util.h"
+
 namespace bcot {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-Eigen::Vector3d RandomUnit(std::mt19937& rng) {
-  std::normal_distribution<double> normal;
-  return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-}
+using test::kPi;
 
 // Rodrigues on a 4×4 with a truncated power series, the reference the closed forms must match.
 Eigen::Matrix4d SeriesExp(const Eigen::Matrix4d& a) {
@@ -31,8 +28,8 @@ TEST_P(Se3AngleTest, ExpMatchesPowerSeriesAndLogInvertsIt) {
   std::mt19937 rng(7);
   for (int trial = 0; trial < 20; ++trial) {
     Vector6d twist;
-    twist.head<3>() = 50.0 * RandomUnit(rng);
-    twist.tail<3>() = GetParam() * RandomUnit(rng);
+    twist.head<3>() = 50.0 * test::RandomUnitVector(rng);
+    twist.tail<3>() = GetParam() * test::RandomUnitVector(rng);
     const Eigen::Isometry3d transform = ExpSE3(twist);
     EXPECT_LT((transform.matrix() - SeriesExp(HatSE3(twist))).cwiseAbs().maxCoeff(), 1e-9);
     const Vector6d recovered = LogSE3(transform);
@@ -49,7 +46,7 @@ INSTANTIATE_TEST_SUITE_P(Angles, Se3AngleTest,
 TEST(So3Test, LogNearPiKeepsAxisAndAngle) {
   std::mt19937 rng(3);
   for (int trial = 0; trial < 50; ++trial) {
-    const Eigen::Vector3d axis = RandomUnit(rng);
+    const Eigen::Vector3d axis = test::RandomUnitVector(rng);
     for (double epsilon : {0.0, 1e-12, 1e-8, 1e-5}) {
       const Eigen::Vector3d phi = (kPi - epsilon) * axis;
       const Eigen::Vector3d recovered = LogSO3(ExpSO3(phi));
@@ -64,7 +61,7 @@ TEST(So3Test, LogNearPiKeepsAxisAndAngle) {
 TEST(So3Test, ExpIsARotation) {
   std::mt19937 rng(5);
   for (double angle : {0.0, 1e-9, 0.3, 3.1}) {
-    const Eigen::Matrix3d r = ExpSO3(angle * RandomUnit(rng));
+    const Eigen::Matrix3d r = ExpSO3(angle * test::RandomUnitVector(rng));
     std::string why;
     EXPECT_TRUE(IsRotationMatrix(r, 1e-12, &why)) << why;
   }
@@ -82,7 +79,7 @@ TEST(So3Test, HatVeeAndCrossProduct) {
 TEST(So3Test, LeftJacobianMatchesNumericDerivative) {
   std::mt19937 rng(11);
   for (double angle : {0.0, 1e-9, 1e-3, 1.0, 2.5, 3.0}) {
-    const Eigen::Vector3d phi = angle * RandomUnit(rng);
+    const Eigen::Vector3d phi = angle * test::RandomUnitVector(rng);
     const Eigen::Matrix3d r_transpose = ExpSO3(phi).transpose();
     Eigen::Matrix3d numeric;
     const double h = 1e-6;
@@ -105,8 +102,8 @@ TEST(Se3Test, AdjointConjugatesTwists) {
   std::mt19937 rng(13);
   for (int trial = 0; trial < 10; ++trial) {
     Vector6d a, b;
-    a << 30.0 * RandomUnit(rng), 1.3 * RandomUnit(rng);
-    b << 0.2 * RandomUnit(rng), 0.05 * RandomUnit(rng);
+    a << 30.0 * test::RandomUnitVector(rng), 1.3 * test::RandomUnitVector(rng);
+    b << 0.2 * test::RandomUnitVector(rng), 0.05 * test::RandomUnitVector(rng);
     const Eigen::Isometry3d t = ExpSE3(a);
     const Eigen::Isometry3d lhs = t * ExpSE3(b) * t.inverse();
     const Eigen::Isometry3d rhs = ExpSE3(AdjointSE3(t) * b);
@@ -120,15 +117,15 @@ TEST(Se3Test, LeftJacobianMatchesNumericDerivativeAndInverts) {
   std::mt19937 rng(19);
   for (double angle : {0.0, 1e-4, 0.3, 1.5, 3.0}) {
     Vector6d xi;
-    xi << 40.0 * RandomUnit(rng), angle * RandomUnit(rng);
+    xi << 40.0 * test::RandomUnitVector(rng), angle * test::RandomUnitVector(rng);
     const Matrix6d analytic = LeftJacobianSE3(xi);
     Matrix6d numeric;
     const double h = 1e-6;
     const Eigen::Isometry3d exp_inverse = ExpSE3(xi).inverse();
     for (int k = 0; k < 6; ++k) {
       const Vector6d e = Vector6d::Unit(k) * h;
-      numeric.col(k) = (LogSE3(ExpSE3(xi + e) * exp_inverse) -
-                        LogSE3(ExpSE3(xi - e) * exp_inverse)) / (2.0 * h);
+      numeric.col(k) =
+          (LogSE3(ExpSE3(xi + e) * exp_inverse) - LogSE3(ExpSE3(xi - e) * exp_inverse)) / (2.0 * h);
     }
     EXPECT_LT((analytic - numeric).cwiseAbs().maxCoeff(), 1e-6) << angle;
     EXPECT_LT((InverseLeftJacobianSE3(xi) * analytic - Matrix6d::Identity()).cwiseAbs().maxCoeff(),
@@ -142,7 +139,7 @@ TEST(Se3Test, LeftJacobianMatchesNumericDerivativeAndInverts) {
 TEST(Se3Test, PointDerivativeMatchesNumeric) {
   std::mt19937 rng(17);
   Vector6d a;
-  a << 100.0 * RandomUnit(rng), 2.0 * RandomUnit(rng);
+  a << 100.0 * test::RandomUnitVector(rng), 2.0 * test::RandomUnitVector(rng);
   const Eigen::Isometry3d t = ExpSE3(a);
   const Eigen::Vector3d x(12.0, -40.0, 7.5);
   Eigen::Matrix<double, 3, 6> analytic;
@@ -159,8 +156,8 @@ TEST(Se3Test, PointDerivativeMatchesNumeric) {
 TEST(Se3Test, InterpolationEndpointsAndMidpoint) {
   std::mt19937 rng(19);
   Vector6d a, b;
-  a << 20.0 * RandomUnit(rng), 0.7 * RandomUnit(rng);
-  b << 60.0 * RandomUnit(rng), 2.9 * RandomUnit(rng);
+  a << 20.0 * test::RandomUnitVector(rng), 0.7 * test::RandomUnitVector(rng);
+  b << 60.0 * test::RandomUnitVector(rng), 2.9 * test::RandomUnitVector(rng);
   const Eigen::Isometry3d ta = ExpSE3(a);
   const Eigen::Isometry3d tb = ExpSE3(b);
   EXPECT_LT((InterpolateSE3(ta, tb, 0.0).matrix() - ta.matrix()).cwiseAbs().maxCoeff(), 1e-12);
@@ -185,8 +182,8 @@ TEST(So3Test, RotationValidation) {
   Eigen::Matrix3d nan_matrix = Eigen::Matrix3d::Identity();
   nan_matrix(0, 1) = std::nan("");
   EXPECT_FALSE(IsRotationMatrix(nan_matrix, 1e-4, &why));
-  const Eigen::Matrix3d noisy = ExpSO3(Eigen::Vector3d(0.3, -0.2, 1.0)) +
-                                1e-5 * Eigen::Matrix3d::Ones();
+  const Eigen::Matrix3d noisy =
+      ExpSO3(Eigen::Vector3d(0.3, -0.2, 1.0)) + 1e-5 * Eigen::Matrix3d::Ones();
   EXPECT_TRUE(IsRotationMatrix(NearestRotation(noisy), 1e-12, &why)) << why;
 }
 

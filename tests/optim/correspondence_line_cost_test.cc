@@ -210,19 +210,6 @@ TEST_F(CorrespondenceLineTest, GradientCheckerAcceptsTheAnalyticJacobian) {
   }
 }
 
-// A 5° / 10 mm perturbation about a seeded random axis and direction.
-Eigen::Isometry3d Perturb(const Eigen::Isometry3d& truth, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> normal;
-  const Eigen::Vector3d axis = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-  const Eigen::Vector3d direction =
-      Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-  Eigen::Isometry3d perturbed = truth;
-  perturbed.linear() = truth.linear() * ExpSO3(axis * 5.0 * test::kTestPi / 180.0);
-  perturbed.translation() += 10.0 * direction;
-  return perturbed;
-}
-
 class SparseEnergyConvergenceTest : public test::BunnyCasterTest,
                                     public ::testing::WithParamInterface<RegionEnergy> {};
 
@@ -248,7 +235,7 @@ TEST_P(SparseEnergyConvergenceTest, RecoversAPerturbedFrame) {
       StatusOr<std::unique_ptr<MultiViewTracker>> tracker =
           MultiViewTracker::Create(*caster_, std::move(views), options);
       ASSERT_TRUE(tracker.ok()) << tracker.status().message();
-      Eigen::Isometry3d pose = Perturb(scene.rig_from_objcentre, seed);
+      Eigen::Isometry3d pose = test::Perturb(scene.rig_from_objcentre, seed);
       const std::vector<cv::Mat3b> used(images.begin(), images.begin() + (binocular ? 2 : 1));
       const StatusOr<FrameSummary> summary = (*tracker)->Initialize(used, &pose);
       ASSERT_TRUE(summary.ok()) << summary.status().message();

@@ -9,15 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "test_util.h"
+
 namespace bcot {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-Eigen::Vector3d RandomUnit(std::mt19937& rng) {
-  std::normal_distribution<double> normal;
-  return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-}
+using test::kPi;
 
 Eigen::Isometry3d Pose(const Eigen::Vector3d& rotation_vector, const Eigen::Vector3d& t) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
@@ -55,12 +52,13 @@ std::vector<Triple> Triples() {
                            Spec{"large relative rotations", 2.0, 1.2, 40.0},
                            Spec{"very large relative rotations", 3.0, 2.5, 80.0}}) {
     for (int seed = 0; seed < 3; ++seed) {
-      const Eigen::Isometry3d a = Pose(spec.absolute_rad * RandomUnit(rng),
-                                       Eigen::Vector3d(30, -20, 500) + 50 * RandomUnit(rng));
-      const Eigen::Isometry3d b =
-          a * Pose(spec.step_rad * RandomUnit(rng), spec.step_mm * RandomUnit(rng));
-      const Eigen::Isometry3d c =
-          b * Pose(spec.step_rad * RandomUnit(rng), spec.step_mm * RandomUnit(rng));
+      const Eigen::Isometry3d a =
+          Pose(spec.absolute_rad * test::RandomUnitVector(rng),
+               Eigen::Vector3d(30, -20, 500) + 50 * test::RandomUnitVector(rng));
+      const Eigen::Isometry3d b = a * Pose(spec.step_rad * test::RandomUnitVector(rng),
+                                           spec.step_mm * test::RandomUnitVector(rng));
+      const Eigen::Isometry3d c = b * Pose(spec.step_rad * test::RandomUnitVector(rng),
+                                           spec.step_mm * test::RandomUnitVector(rng));
       triples.push_back({std::string(spec.name) + " " + std::to_string(seed), a, b, c});
     }
   }
@@ -100,9 +98,10 @@ TEST(ConstantVelocityCostTest, DecoupledIsZeroOnStraightCentreAndConstantSpin) {
   const ConstantVelocityCost cost(TestWeights(), MotionPriorForm::kDecoupled);
   std::mt19937 rng(37);
   for (int trial = 0; trial < 5; ++trial) {
-    const Eigen::Vector3d omega = 0.1 * RandomUnit(rng);
-    const Eigen::Vector3d velocity = 5.0 * RandomUnit(rng);
-    const Eigen::Isometry3d a = Pose(2.5 * RandomUnit(rng), 400.0 * RandomUnit(rng));
+    const Eigen::Vector3d omega = 0.1 * test::RandomUnitVector(rng);
+    const Eigen::Vector3d velocity = 5.0 * test::RandomUnitVector(rng);
+    const Eigen::Isometry3d a =
+        Pose(2.5 * test::RandomUnitVector(rng), 400.0 * test::RandomUnitVector(rng));
     const Eigen::Isometry3d b =
         Pose(LogSO3(Eigen::Matrix3d(a.linear() * ExpSO3(omega))), a.translation() + velocity);
     Eigen::Isometry3d c =
@@ -135,8 +134,9 @@ TEST(ConstantVelocityCostTest, ZeroOnConstantVelocityAndWeightedVelocityChangeOt
   std::mt19937 rng(31);
   for (int trial = 0; trial < 5; ++trial) {
     Vector6d velocity;
-    velocity << 5.0 * RandomUnit(rng), 0.1 * RandomUnit(rng);
-    const Eigen::Isometry3d a = Pose(2.5 * RandomUnit(rng), 400.0 * RandomUnit(rng));
+    velocity << 5.0 * test::RandomUnitVector(rng), 0.1 * test::RandomUnitVector(rng);
+    const Eigen::Isometry3d a =
+        Pose(2.5 * test::RandomUnitVector(rng), 400.0 * test::RandomUnitVector(rng));
     const Eigen::Isometry3d b = a * ExpSE3(velocity);
     const Eigen::Isometry3d c = b * ExpSE3(velocity);
     PoseParameters pa = ToPoseParameters(a), pb = ToPoseParameters(b), pc = ToPoseParameters(c);
@@ -170,8 +170,8 @@ std::vector<Quad> Quads() {
     const double step_rad =
         LogSO3(Eigen::Matrix3d(triple.b.linear().transpose() * triple.c.linear())).norm();
     const double step_mm = (triple.c.translation() - triple.b.translation()).norm();
-    const Eigen::Isometry3d d =
-        triple.c * Pose(step_rad * RandomUnit(rng), step_mm * RandomUnit(rng));
+    const Eigen::Isometry3d d = triple.c * Pose(step_rad * test::RandomUnitVector(rng),
+                                                step_mm * test::RandomUnitVector(rng));
     quads.push_back({triple.name, triple.a, triple.b, triple.c, d});
   }
   return quads;
@@ -214,9 +214,12 @@ TEST(ConstantAccelerationCostTest, DecoupledIsZeroOnConstantAcceleration) {
   const ConstantAccelerationCost cost(TestWeights(), MotionPriorForm::kDecoupled);
   std::mt19937 rng(43);
   for (int trial = 0; trial < 5; ++trial) {
-    const Eigen::Vector3d omega = 0.05 * RandomUnit(rng), alpha = 0.01 * RandomUnit(rng);
-    const Eigen::Vector3d velocity = 3.0 * RandomUnit(rng), acceleration = 0.8 * RandomUnit(rng);
-    std::vector<Eigen::Isometry3d> poses = {Pose(2.5 * RandomUnit(rng), 400.0 * RandomUnit(rng))};
+    const Eigen::Vector3d omega = 0.05 * test::RandomUnitVector(rng),
+                          alpha = 0.01 * test::RandomUnitVector(rng);
+    const Eigen::Vector3d velocity = 3.0 * test::RandomUnitVector(rng),
+                          acceleration = 0.8 * test::RandomUnitVector(rng);
+    std::vector<Eigen::Isometry3d> poses = {
+        Pose(2.5 * test::RandomUnitVector(rng), 400.0 * test::RandomUnitVector(rng))};
     const auto step = [&](int k, const Eigen::Vector3d& kick_mm, const Eigen::Vector3d& kick_rad) {
       const Eigen::Isometry3d& x = poses.back();
       poses.push_back(
@@ -252,9 +255,10 @@ TEST(ConstantAccelerationCostTest, Se3IsZeroOnConstantTwistChange) {
   std::mt19937 rng(47);
   for (int trial = 0; trial < 5; ++trial) {
     Vector6d twist, change;
-    twist << 5.0 * RandomUnit(rng), 0.1 * RandomUnit(rng);
-    change << 0.5 * RandomUnit(rng), 0.01 * RandomUnit(rng);
-    std::vector<Eigen::Isometry3d> poses = {Pose(2.5 * RandomUnit(rng), 400.0 * RandomUnit(rng))};
+    twist << 5.0 * test::RandomUnitVector(rng), 0.1 * test::RandomUnitVector(rng);
+    change << 0.5 * test::RandomUnitVector(rng), 0.01 * test::RandomUnitVector(rng);
+    std::vector<Eigen::Isometry3d> poses = {
+        Pose(2.5 * test::RandomUnitVector(rng), 400.0 * test::RandomUnitVector(rng))};
     for (int k = 0; k < 3; ++k) poses.push_back(poses.back() * ExpSE3(twist + k * change));
     EXPECT_LT(Residual(cost, poses).cwiseAbs().maxCoeff(), 1e-9) << trial;
   }

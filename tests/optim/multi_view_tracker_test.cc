@@ -50,19 +50,6 @@ std::vector<MultiViewTrackerOptions> ColorModelVariants() {
   return variants;
 }
 
-// A 5° / 10 mm perturbation about a seeded random axis and direction.
-Eigen::Isometry3d Perturb(const Eigen::Isometry3d& truth, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> normal;
-  const Eigen::Vector3d axis = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-  const Eigen::Vector3d direction =
-      Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-  Eigen::Isometry3d perturbed = truth;
-  perturbed.linear() = truth.linear() * ExpSO3(axis * 5.0 * test::kTestPi / 180.0);
-  perturbed.translation() += 10.0 * direction;
-  return perturbed;
-}
-
 std::vector<cv::Mat3b> RenderViews(const RayCaster& caster, const test::BinocularScene& scene,
                                    const Eigen::Isometry3d& rig_from_objcentre, unsigned seed) {
   return {
@@ -92,7 +79,7 @@ TEST_F(MultiViewTrackerTest, BinocularRecoversAFramePerturbedByFiveDegreesAndTen
   const std::vector<cv::Mat3b> images = RenderViews(*caster_, scene, scene.rig_from_objcentre, 11);
   for (unsigned seed : {1u, 2u, 3u}) {
     const std::unique_ptr<MultiViewTracker> tracker = MakeTracker(scene, /*binocular=*/true);
-    Eigen::Isometry3d pose = Perturb(scene.rig_from_objcentre, seed);
+    Eigen::Isometry3d pose = test::Perturb(scene.rig_from_objcentre, seed);
     const StatusOr<FrameSummary> summary = tracker->Initialize(images, &pose);
     ASSERT_TRUE(summary.ok()) << summary.status().message();
     std::printf(
@@ -115,7 +102,7 @@ TEST_F(MultiViewTrackerTest, SecondViewRemovesTheDepthErrorOfTheFirst) {
   double mono_depth_error = 0.0;
   double joint_depth_error = 0.0;
   for (unsigned seed : {4u, 5u, 6u}) {
-    const Eigen::Isometry3d init = Perturb(scene.rig_from_objcentre, seed);
+    const Eigen::Isometry3d init = test::Perturb(scene.rig_from_objcentre, seed);
     Eigen::Isometry3d mono = init;
     Eigen::Isometry3d joint = init;
     ASSERT_TRUE(MakeTracker(scene, false)->Initialize({images[0]}, &mono).ok());
@@ -139,7 +126,7 @@ TEST_F(MultiViewTrackerTest, EveryColorModelCombinationRecoversAPerturbedFrame) 
         fmt::format("kind {} refine {}", static_cast<int>(options.color.kind),
                     options.color.refine_kind ? static_cast<int>(*options.color.refine_kind) : -1);
     const std::unique_ptr<MultiViewTracker> tracker = MakeTracker(scene, true, options);
-    Eigen::Isometry3d pose = Perturb(scene.rig_from_objcentre, 7);
+    Eigen::Isometry3d pose = test::Perturb(scene.rig_from_objcentre, 7);
     const StatusOr<FrameSummary> summary = tracker->Initialize(images, &pose);
     ASSERT_TRUE(summary.ok()) << summary.status().message();
     EXPECT_TRUE(summary->usable()) << name << ": " << summary->message;

@@ -4,14 +4,14 @@
 // shaded object in front of a textured, noisy background (anti-aliased by 4×4 supersampling).
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <Eigen/Geometry>
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <random>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "bcot/core/camera.h"
 #include "bcot/core/se3.h"
@@ -53,6 +53,19 @@ inline Eigen::Isometry3d MakeCamFromObjcentre(const Eigen::Vector3d& rotation_ve
   transform.linear() = ExpSO3(rotation_vector);
   transform.translation() = translation_mm;
   return transform;
+}
+
+// A 5° / 10 mm perturbation about a seeded random axis and direction.
+inline Eigen::Isometry3d Perturb(const Eigen::Isometry3d& truth, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  const Eigen::Vector3d axis = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+  const Eigen::Vector3d direction =
+      Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+  Eigen::Isometry3d perturbed = truth;
+  perturbed.linear() = truth.linear() * ExpSO3(axis * 5.0 * kTestPi / 180.0);
+  perturbed.translation() += 10.0 * direction;
+  return perturbed;
 }
 
 inline cv::Vec3f BackgroundColor(double x, double y) {
