@@ -1,12 +1,12 @@
 #include "bcot/core/yaml_util.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <limits>
 #include <map>
-
-#include <fmt/format.h>
 
 #include "bcot/core/file_util.h"
 
@@ -435,6 +435,22 @@ Status YamlMap::GetOptional(const std::string& key, T* value) {
   used_.insert(key);
   if (Find(key) == nullptr) return Status::Ok();
   return Get(key, value);
+}
+
+Status YamlMap::GetOptionalChoice(const std::string& key, const std::vector<std::string>& names,
+                                  int* index) {
+  std::string value;
+  BCOT_RETURN_IF_ERROR(GetOptional(key, &value));
+  if (!Has(key)) return Status::Ok();
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (value == names[i]) {
+      *index = static_cast<int>(i);
+      return Status::Ok();
+    }
+  }
+  std::string choices = names.empty() ? "" : names[0];
+  for (size_t i = 1; i < names.size(); ++i) choices += " | " + names[i];
+  return Error(key, fmt::format("'{}' is not one of {}", value, choices));
 }
 
 Status YamlMap::GetFixedArray(const std::string& key, size_t expected_size,

@@ -103,22 +103,6 @@ Status ParseSection(YamlMap& root, const std::string& section,
   return LocateViolations(validate(), map);
 }
 
-Status GetEnum(YamlMap& map, const std::string& key, const std::vector<std::string>& names,
-               int* index) {
-  if (!map.Has(key)) return Status::Ok();
-  std::string value;
-  BCOT_RETURN_IF_ERROR(map.Get(key, &value));
-  for (size_t i = 0; i < names.size(); ++i) {
-    if (value == names[i]) {
-      *index = static_cast<int>(i);
-      return Status::Ok();
-    }
-  }
-  std::string choices = names[0];
-  for (size_t i = 1; i < names.size(); ++i) choices += " | " + names[i];
-  return map.Error(key, fmt::format("'{}' is not one of {}", value, choices));
-}
-
 Status ParseInto(const YAML::Node& root_node, const std::string& source_name, AnnotateOptions* o) {
   if (!root_node.IsDefined() || root_node.IsNull()) return Status::Ok();
   YamlMap root(root_node, source_name, "", StatusCode::kInvalidConfig);
@@ -166,11 +150,12 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name, An
       root, "cost",
       [&](YamlMap& m) -> Status {
         int form = static_cast<int>(cost.form);
-        BCOT_RETURN_IF_ERROR(GetEnum(m, "form", {"sqrt_energy", "irls"}, &form));
+        BCOT_RETURN_IF_ERROR(m.GetOptionalChoice("form", {"sqrt_energy", "irls"}, &form));
         cost.form = static_cast<RegionResidualForm>(form);
         BCOT_RETURN_IF_ERROR(m.GetOptional("heaviside_slope", &cost.heaviside_slope));
         int energy = static_cast<int>(frame.energy);
-        BCOT_RETURN_IF_ERROR(GetEnum(m, "energy", {"dense", "sparse", "combined"}, &energy));
+        BCOT_RETURN_IF_ERROR(
+            m.GetOptionalChoice("energy", {"dense", "sparse", "combined"}, &energy));
         frame.energy = static_cast<RegionEnergy>(energy);
         return m.GetOptional("probability_floor", &cost.probability_floor);
       },
@@ -199,11 +184,12 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name, An
       root, "color",
       [&](YamlMap& m) -> Status {
         int kind = static_cast<int>(color.kind);
-        BCOT_RETURN_IF_ERROR(GetEnum(m, "kind", {"global", "local"}, &kind));
+        BCOT_RETURN_IF_ERROR(m.GetOptionalChoice("kind", {"global", "local"}, &kind));
         color.kind = static_cast<ColorModelKind>(kind);
         int refine_kind =
             color.refine_kind.has_value() ? 1 + static_cast<int>(*color.refine_kind) : 0;
-        BCOT_RETURN_IF_ERROR(GetEnum(m, "refine_kind", {"same", "global", "local"}, &refine_kind));
+        BCOT_RETURN_IF_ERROR(
+            m.GetOptionalChoice("refine_kind", {"same", "global", "local"}, &refine_kind));
         if (refine_kind == 0) {
           color.refine_kind.reset();
         } else {
@@ -258,12 +244,12 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name, An
         BCOT_RETURN_IF_ERROR(m.GetOptional("overlap", &window.overlap));
         BCOT_RETURN_IF_ERROR(m.GetOptional("iterations", &window.iterations));
         int prior = static_cast<int>(window.prior);
-        BCOT_RETURN_IF_ERROR(GetEnum(m, "prior", {"se3", "decoupled"}, &prior));
+        BCOT_RETURN_IF_ERROR(m.GetOptionalChoice("prior", {"se3", "decoupled"}, &prior));
         window.prior = static_cast<MotionPriorForm>(prior);
         for (auto [key, model] : {std::pair{"translation_model", &window.translation_model},
                                   std::pair{"rotation_model", &window.rotation_model}}) {
           int value = static_cast<int>(*model);
-          BCOT_RETURN_IF_ERROR(GetEnum(m, key, {"velocity", "acceleration"}, &value));
+          BCOT_RETURN_IF_ERROR(m.GetOptionalChoice(key, {"velocity", "acceleration"}, &value));
           *model = static_cast<MotionModel>(value);
         }
         for (auto [key, axes] : {std::pair{"rotation_sigma_deg", &window.rotation_sigma_deg},

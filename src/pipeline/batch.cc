@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bcot/core/file_util.h"
+#include "bcot/core/html.h"
 #include "bcot/core/sequence.h"
 #include "bcot/pipeline/annotator.h"
 #include "bcot/pipeline/quality_report.h"

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bcot/core/file_util.h"
+#include "bcot/core/html.h"
 
 namespace bcot {
 namespace {
@@ -59,29 +60,6 @@ std::string CsvCell(const std::string& text) {
     out += c;
   }
   return out + "\"";
-}
-
-std::string XmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
 }
 
 nlohmann::json Number(double value) {
@@ -195,7 +173,7 @@ std::string FormatSuccessCurveSvg(const EvalReport& report) {
       "viewBox=\"0 0 {0} {1}\" font-family=\"sans-serif\" font-size=\"12\">\n"
       "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       "<text x=\"{2}\" y=\"18\" font-size=\"14\">ADD success rate ({3})</text>\n",
-      kWidth, kHeight, kLeft, XmlEscape(report.mode));
+      kWidth, kHeight, kLeft, HtmlEscape(report.mode));
   for (int i = 0; i <= 5; ++i) {  // grid and tick labels
     const double t = x_max * i / 5.0, p = 20.0 * i;
     svg += fmt::format(
@@ -237,7 +215,7 @@ std::string FormatSuccessCurveSvg(const EvalReport& report) {
         "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"{3}\" "
         "stroke-width=\"2\"/><text x=\"{4}\" y=\"{5:.1f}\">{6} (AUC {7})</text>\n",
         kLeft + plot_w + 10, legend_y, kLeft + plot_w + 30, color, kLeft + plot_w + 36,
-        legend_y + 4, XmlEscape(curves[c]->name), Fixed1(s.add_auc));
+        legend_y + 4, HtmlEscape(curves[c]->name), Fixed1(s.add_auc));
   }
   svg += "</svg>\n";
   return svg;

@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bcot/core/file_util.h"
+#include "bcot/core/html.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/yaml_util.h"
 #include "bcot/optim/color_model.h"
@@ -84,7 +85,8 @@ ContourOptions QualityContourOptions(const QualityOptions& options) {
 StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& camera,
                                        const Eigen::Isometry3d& cam_from_object,
                                        const std::string& image_path,
-                                       const QualityOptions& options) {
+                                       const Eigen::Vector3d& object_centre,
+                                       double object_diameter_mm, const QualityOptions& options) {
   const cv::Mat image = cv::imread(image_path, cv::IMREAD_COLOR);
   if (image.empty()) return Status::InvalidInput(image_path + ": cannot read the image");
   if (image.cols != camera.width || image.rows != camera.height) {
@@ -96,15 +98,17 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
       RenderSilhouette(caster, camera, cam_from_object, QualityContourOptions(options));
   quality.points = static_cast<int>(silhouette.contour.size());
   if (silhouette.contour.empty()) {
-    quality.median_px = quality.p90_px = kNaN;
+    quality.median_px = quality.p90_px = quality.raw_median_px = quality.raw_p90_px = kNaN;
     quality.bad = true;
     return quality;
   }
   ColorModelOptions color;
   color.bins_per_channel = options.bins_per_channel;
-  GlobalColorModel model(color);
+  color.sample_margin_px = options.color_margin_px;
+  color.kind = options.color_kind;
+  const std::unique_ptr<ColorModel> model = MakeColorModel(color, object_diameter_mm);
   const cv::Mat3b image3(image);
-  model.Update(image3, silhouette);
+  model->Update(image3, silhouette);
 
   double min_x = camera.width, min_y = camera.height, max_x = 0, max_y = 0;
   for (const ContourPoint& point : silhouette.contour) {
@@ -113,7 +117,8 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
     max_x = std::max(max_x, point.pixel.x());
     max_y = std::max(max_y, point.pixel.y());
   }
-  const int grow = static_cast<int>(std::ceil(options.search_radius_px + options.step_window_px)) + 2;
+  const int grow =
+      static_cast<int>(std::ceil(options.search_radius_px + options.step_window_px)) + 2;
   const cv::Rect roi = cv::Rect(cv::Point(static_cast<int>(std::floor(min_x)) - grow,
                                           static_cast<int>(std::floor(min_y)) - grow),
                                 cv::Point(static_cast<int>(std::ceil(max_x)) + grow + 1,
@@ -124,7 +129,7 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
   for (int y = roi.y; y < roi.y + roi.height; ++y) {
     for (int x = roi.x; x < roi.x + roi.width; ++x) pixels.emplace_back(x, y);
   }
-  const std::vector<double> posteriors = model.ForegroundPosteriors(image3, pixels);
+  const std::vector<double> posteriors = model->ForegroundPosteriors(image3, pixels);
   cv::Mat1f posterior(roi.height, roi.width);
   for (size_t i = 0; i < posteriors.size(); ++i) {
     posterior(static_cast<int>(i) / roi.width, static_cast<int>(i) % roi.width) =
@@ -139,8 +144,17 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
   const std::vector<double> offsets =
       BoundaryOffsets(silhouette.contour, posterior, roi, options, colour);
   for (double offset : offsets) quality.found += std::isfinite(offset) ? 1 : 0;
-  quality.median_px = AbsPercentile(offsets, 0.5);
-  quality.p90_px = AbsPercentile(offsets, 0.9);
+  quality.raw_median_px = AbsPercentile(offsets, 0.5);
+  quality.raw_p90_px = AbsPercentile(offsets, 0.9);
+  if (options.fit_rigid_motion) {
+    const std::vector<double> fitted = FitRigidMotionOffsets(
+        silhouette.contour, offsets, camera, cam_from_object, object_centre, options.fit_scale_px);
+    quality.median_px = AbsPercentile(fitted, 0.5);
+    quality.p90_px = AbsPercentile(fitted, 0.9);
+  } else {
+    quality.median_px = quality.raw_median_px;
+    quality.p90_px = quality.raw_p90_px;
+  }
   const double statistic = quality.Statistic(options.statistic);
   quality.bad = !std::isfinite(statistic) || statistic > options.threshold_px ||
                 quality.found < options.min_found_fraction * quality.points;
@@ -212,8 +226,8 @@ std::string ViewPlot(const QualityReport& report, size_t v) {
       const double value = p90 ? report.frames[f][v].p90_px : report.frames[f][v].median_px;
       if (std::isfinite(value)) points += fmt::format("{:.1f},{:.1f} ", x_of(f), y_of(value));
     }
-    return fmt::format("<polyline fill='none' stroke='{}' stroke-width='1.5' points='{}'/>",
-                       color, points);
+    return fmt::format("<polyline fill='none' stroke='{}' stroke-width='1.5' points='{}'/>", color,
+                       points);
   };
   std::string svg = fmt::format(
       "<svg xmlns='http://www.w3.org/2000/svg' width='{}' height='{}' class='plot'>"
@@ -223,8 +237,8 @@ std::string ViewPlot(const QualityReport& report, size_t v) {
     svg += fmt::format("<text x='2' y='{:.1f}' font-size='10'>{:.1f}</text>", y_of(tick) + 3, tick);
   }
   svg += fmt::format(
-      "<line x1='{}' x2='{}' y1='{:.1f}' y2='{:.1f}' stroke='#d33' stroke-dasharray='4 3'/>",
-      left, width - 10, y_of(report.options.threshold_px), y_of(report.options.threshold_px));
+      "<line x1='{}' x2='{}' y1='{:.1f}' y2='{:.1f}' stroke='#d33' stroke-dasharray='4 3'/>", left,
+      width - 10, y_of(report.options.threshold_px), y_of(report.options.threshold_px));
   for (int f = 0; f < num_frames; ++f) {
     if (report.frames[f][v].bad) {
       svg += fmt::format("<rect x='{:.1f}' y='5' width='2' height='{}' fill='#f4b4b4'/>",
@@ -258,7 +272,8 @@ StatusOr<std::string> Thumbnail(const RayCaster& caster, const Camera& camera,
                    cv::Point(int(bounds.br().x + margin), int(bounds.br().y + margin))) &
           cv::Rect(0, 0, image.cols, image.rows);
   }
-  const double scale = std::min(4.0, double(options.thumbnail_px) / std::max(box.width, box.height));
+  const double scale =
+      std::min(4.0, double(options.thumbnail_px) / std::max(box.width, box.height));
   cv::Mat crop;
   cv::resize(image(box), crop, cv::Size(), scale, scale, cv::INTER_AREA);
   constexpr int kShift = 4;  // fixed-point bits for sub-pixel drawing
@@ -295,8 +310,7 @@ Status QualityOptions::Validate() const {
           allowed_bad_fraction, "must be in [0, 1]");
   require(search_radius_px > 0, "search_radius_px", search_radius_px, "must be > 0");
   require(step_window_px > 0, "step_window_px", step_window_px, "must be > 0");
-  require(edge_weight >= 0 && edge_weight <= 10, "edge_weight", edge_weight,
-          "must be in [0, 10]");
+  require(edge_weight >= 0 && edge_weight <= 10, "edge_weight", edge_weight, "must be in [0, 10]");
   require(min_contrast > 0 && min_contrast < 1 + edge_weight, "min_contrast", min_contrast,
           "must be in (0, 1 + edge_weight)");
   require(min_found_fraction >= 0 && min_found_fraction <= 1, "min_found_fraction",
@@ -304,6 +318,9 @@ Status QualityOptions::Validate() const {
   require(sample_spacing_px > 0, "sample_spacing_px", sample_spacing_px, "must be > 0");
   require(bins_per_channel >= 1 && bins_per_channel <= 256 && 256 % bins_per_channel == 0,
           "bins_per_channel", bins_per_channel, "must divide 256");
+  require(color_margin_px >= 0 && color_margin_px < search_radius_px, "color_margin_px",
+          color_margin_px, "must be in [0, search_radius_px)");
+  require(fit_scale_px > 0, "fit_scale_px", fit_scale_px, "must be > 0");
   require(worst_frames >= 0, "worst_frames", worst_frames, "must be >= 0");
   require(thumbnail_px >= 32, "thumbnail_px", thumbnail_px, "must be >= 32");
   if (violations.empty()) return Status::Ok();
@@ -319,17 +336,9 @@ Status ParseQualityOptions(const YAML::Node& node, const std::string& source_nam
   BCOT_RETURN_IF_ERROR(map.Check());
   QualityOptions& o = *options;
   BCOT_RETURN_IF_ERROR(map.GetOptional("threshold_px", &o.threshold_px));
-  if (map.Has("statistic")) {
-    std::string name;
-    BCOT_RETURN_IF_ERROR(map.Get("statistic", &name));
-    if (name == "median") {
-      o.statistic = QualityStatistic::kMedian;
-    } else if (name == "p90") {
-      o.statistic = QualityStatistic::kP90;
-    } else {
-      return map.Error("statistic", fmt::format("'{}' is not one of median | p90", name));
-    }
-  }
+  int statistic = o.statistic == QualityStatistic::kMedian ? 0 : 1;
+  BCOT_RETURN_IF_ERROR(map.GetOptionalChoice("statistic", {"median", "p90"}, &statistic));
+  o.statistic = statistic == 0 ? QualityStatistic::kMedian : QualityStatistic::kP90;
   BCOT_RETURN_IF_ERROR(map.GetOptional("allowed_bad_fraction", &o.allowed_bad_fraction));
   BCOT_RETURN_IF_ERROR(map.GetOptional("search_radius_px", &o.search_radius_px));
   BCOT_RETURN_IF_ERROR(map.GetOptional("step_window_px", &o.step_window_px));
@@ -338,6 +347,12 @@ Status ParseQualityOptions(const YAML::Node& node, const std::string& source_nam
   BCOT_RETURN_IF_ERROR(map.GetOptional("min_found_fraction", &o.min_found_fraction));
   BCOT_RETURN_IF_ERROR(map.GetOptional("sample_spacing_px", &o.sample_spacing_px));
   BCOT_RETURN_IF_ERROR(map.GetOptional("bins_per_channel", &o.bins_per_channel));
+  int color_kind = o.color_kind == ColorModelKind::kGlobal ? 0 : 1;
+  BCOT_RETURN_IF_ERROR(map.GetOptionalChoice("color_kind", {"global", "local"}, &color_kind));
+  o.color_kind = color_kind == 0 ? ColorModelKind::kGlobal : ColorModelKind::kLocal;
+  BCOT_RETURN_IF_ERROR(map.GetOptional("color_margin_px", &o.color_margin_px));
+  BCOT_RETURN_IF_ERROR(map.GetOptional("fit_rigid_motion", &o.fit_rigid_motion));
+  BCOT_RETURN_IF_ERROR(map.GetOptional("fit_scale_px", &o.fit_scale_px));
   BCOT_RETURN_IF_ERROR(map.GetOptional("worst_frames", &o.worst_frames));
   BCOT_RETURN_IF_ERROR(map.GetOptional("thumbnail_px", &o.thumbnail_px));
   BCOT_RETURN_IF_ERROR(map.CheckNoUnknownKeys());
@@ -351,8 +366,8 @@ Status ParseQualityOptions(const YAML::Node& node, const std::string& source_nam
     const std::string piece = rest.substr(0, end);
     rest = end == std::string::npos ? "" : rest.substr(end + 2);
     const std::string key = piece.substr(0, piece.find(" = "));
-    message += (message.empty() ? "" : "; ") +
-               fmt::format("{}: quality.{}", map.Location(key), piece);
+    message +=
+        (message.empty() ? "" : "; ") + fmt::format("{}: quality.{}", map.Location(key), piece);
   }
   return Status::InvalidConfig(message);
 }
@@ -372,9 +387,66 @@ std::string FormatQualityOptions(const QualityOptions& o) {
   line("min_found_fraction", fmt::format("{}", o.min_found_fraction));
   line("sample_spacing_px", fmt::format("{}", o.sample_spacing_px));
   line("bins_per_channel", fmt::format("{}", o.bins_per_channel));
+  line("color_kind", o.color_kind == ColorModelKind::kLocal ? "local" : "global");
+  line("color_margin_px", fmt::format("{}", o.color_margin_px));
+  line("fit_rigid_motion", o.fit_rigid_motion ? "true" : "false");
+  line("fit_scale_px", fmt::format("{}", o.fit_scale_px));
   line("worst_frames", fmt::format("{}", o.worst_frames));
   line("thumbnail_px", fmt::format("{}", o.thumbnail_px));
   return y;
+}
+
+std::vector<double> FitRigidMotionOffsets(const std::vector<ContourPoint>& contour,
+                                          const std::vector<double>& offsets, const Camera& camera,
+                                          const Eigen::Isometry3d& cam_from_object,
+                                          const Eigen::Vector3d& object_centre, double scale_px) {
+  BCOT_CHECK(contour.size() == offsets.size());
+  BCOT_CHECK(scale_px > 0.0);
+  // Row i of A: ∂(n_i · x_i)/∂δ for δ = (ω, v), the motion X ↦ X + ω × (X − c) + v of the
+  // camera-frame points about the object centre c (rotation about c keeps ω and v apart).
+  const Eigen::Vector3d centre = cam_from_object * object_centre;
+  Eigen::Matrix<double, Eigen::Dynamic, 6> rows(contour.size(), 6);
+  for (size_t i = 0; i < contour.size(); ++i) {
+    const Eigen::Vector3d point = cam_from_object * contour[i].point_in_object;
+    Eigen::Matrix<double, 2, 3> d_pixel_d_point;
+    camera.Project(point, &d_pixel_d_point);
+    const Eigen::RowVector3d n_d = contour[i].normal.transpose() * d_pixel_d_point;
+    rows.block<1, 3>(i, 0) = (point - centre).cross(n_d.transpose()).transpose();  // n_dᵀ(ω × r)
+    rows.block<1, 3>(i, 3) = n_d;
+  }
+  // IRLS: Huber weights (convex, so the start does not matter), then Tukey's biweight, which
+  // gives outliers (clutter edges, blur, highlights found instead of the boundary) no weight.
+  Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
+  int used = 0;
+  for (int iteration = 0; iteration < 10; ++iteration) {
+    Eigen::Matrix<double, 6, 6> normal = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 1> rhs = Eigen::Matrix<double, 6, 1>::Zero();
+    used = 0;
+    for (size_t i = 0; i < contour.size(); ++i) {
+      if (!std::isfinite(offsets[i])) continue;
+      const double residual = std::abs(offsets[i] - rows.row(i).dot(delta));
+      double weight;
+      if (iteration < 5) {
+        weight = residual <= scale_px ? 1.0 : scale_px / residual;
+      } else {
+        const double u = residual / (3.0 * scale_px);
+        weight = u < 1.0 ? (1 - u * u) * (1 - u * u) : 0.0;
+      }
+      if (weight <= 0) continue;
+      normal += weight * rows.row(i).transpose() * rows.row(i);
+      rhs += weight * offsets[i] * rows.row(i).transpose();
+      ++used;
+    }
+    if (used < 6) break;
+    // Directions the contour does not observe (depth, rotations that slide the contour along
+    // itself) are damped to zero; they move no contour point, so the fitted offsets ignore them.
+    normal.diagonal().array() += 1e-9 * normal.trace() + 1e-12;
+    delta = normal.ldlt().solve(rhs);
+  }
+  std::vector<double> fitted(contour.size(), kNaN);
+  if (used < 6) return fitted;
+  for (size_t i = 0; i < contour.size(); ++i) fitted[i] = rows.row(i).dot(delta);
+  return fitted;
 }
 
 std::vector<double> BoundaryOffsets(const std::vector<ContourPoint>& contour,
@@ -384,7 +456,8 @@ std::vector<double> BoundaryOffsets(const std::vector<ContourPoint>& contour,
   std::vector<double> offsets(contour.size(), kNaN);
   if (posterior.empty()) return offsets;
   const bool use_edges = options.edge_weight > 0 && !colour.empty();
-  const int window = std::max(1, static_cast<int>(std::lround(options.step_window_px / kProfileStepPx)));
+  const int window =
+      std::max(1, static_cast<int>(std::lround(options.step_window_px / kProfileStepPx)));
   const int radius = static_cast<int>(std::ceil(options.search_radius_px / kProfileStepPx));
   const int half = radius + window;
   // cumulative[c][k] = sum over the profile samples j < k at t_j = (j − half)·step of channel
@@ -468,9 +541,9 @@ StatusOr<QualityReport> MeasureQuality(const Sequence& sequence,
     const int frame = job / static_cast<int>(indices.size());
     const int view = job % static_cast<int>(indices.size());
     const RigCamera& camera = sequence.rig[indices[view]];
-    StatusOr<ViewFrameQuality> quality =
-        MeasureView(caster, camera.camera, camera.cam_from_rig * rig_from_object[frame],
-                    sequence.image_paths[indices[view]][frame], options);
+    StatusOr<ViewFrameQuality> quality = MeasureView(
+        caster, camera.camera, camera.cam_from_rig * rig_from_object[frame],
+        sequence.image_paths[indices[view]][frame], mesh.bbox_center(), mesh.diameter(), options);
     if (quality.ok()) {
       report.frames[frame][view] = *quality;
     } else {
@@ -490,7 +563,8 @@ std::string QualityJson(const QualityReport& report) {
   json["options"] = {{"threshold_px", report.options.threshold_px},
                      {"statistic", QualityStatisticName(report.options.statistic)},
                      {"allowed_bad_fraction", report.options.allowed_bad_fraction},
-                     {"search_radius_px", report.options.search_radius_px}};
+                     {"search_radius_px", report.options.search_radius_px},
+                     {"fit_rigid_motion", report.options.fit_rigid_motion}};
   json["num_frames"] = report.frames.size();
   double worst = 0.0;
   for (const ViewQualitySummary& view : report.views) {
@@ -509,6 +583,8 @@ std::string QualityJson(const QualityReport& report) {
       const ViewFrameQuality& q = report.frames[f][v];
       frame["views"].push_back({{"median_px", q.median_px},
                                 {"p90_px", q.p90_px},
+                                {"raw_median_px", q.raw_median_px},
+                                {"raw_p90_px", q.raw_p90_px},
                                 {"points", q.points},
                                 {"found", q.found},
                                 {"bad", q.bad}});
@@ -519,30 +595,16 @@ std::string QualityJson(const QualityReport& report) {
 }
 
 std::string QualityCsv(const QualityReport& report) {
-  std::string csv = "frame,view,median_px,p90_px,points,found,bad\n";
+  std::string csv = "frame,view,median_px,p90_px,raw_median_px,raw_p90_px,points,found,bad\n";
   for (size_t f = 0; f < report.frames.size(); ++f) {
     for (size_t v = 0; v < report.view_names.size(); ++v) {
       const ViewFrameQuality& q = report.frames[f][v];
-      csv += fmt::format("{},{},{},{},{},{},{}\n", f, report.view_names[v], JsonNumber(q.median_px),
-                         JsonNumber(q.p90_px), q.points, q.found, q.bad ? 1 : 0);
+      csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", f, report.view_names[v],
+                         JsonNumber(q.median_px), JsonNumber(q.p90_px), JsonNumber(q.raw_median_px),
+                         JsonNumber(q.raw_p90_px), q.points, q.found, q.bad ? 1 : 0);
     }
   }
   return csv;
-}
-
-std::string HtmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& sequence,
@@ -561,7 +623,8 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
       "</style></head><body>\n<h1>Quality report</h1><p>Sequence: <code>{0}</code>, {1} frames, "
       "views: {2}</p>\n",
       HtmlEscape(report.sequence_dir), report.frames.size(), report.view_names.size());
-  html += fmt::format("<div class='verdict {0}' id='verdict'><b>{0}</b>", report.accepted ? "accepted" : "rejected");
+  html += fmt::format("<div class='verdict {0}' id='verdict'><b>{0}</b>",
+                      report.accepted ? "accepted" : "rejected");
   html += fmt::format(
       " — a frame-view is bad when its {} reprojection error exceeds {} px (or its boundary "
       "is not visible on {:.0f}% of the contour); a view may be bad on {:.0f}% of frames.",
@@ -573,8 +636,9 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
     for (const std::string& reason : report.reasons) html += "<li>" + HtmlEscape(reason) + "</li>";
     html += "</ul>";
   }
-  html += "</div>\n<table><tr><th>view</th><th>bad frames</th><th>median of medians (px)</th>"
-          "<th>worst (px)</th></tr>";
+  html +=
+      "</div>\n<table><tr><th>view</th><th>bad frames</th><th>median of medians (px)</th>"
+      "<th>worst (px)</th></tr>";
   for (const ViewQualitySummary& view : report.views) {
     html += fmt::format("<tr><td>{}</td><td>{}</td><td>{:.2f}</td><td>{:.2f}</td></tr>",
                         HtmlEscape(view.name), view.bad_frames, view.median_of_medians_px,

@@ -161,9 +161,11 @@ int main(int argc, char** argv) {
   app.add_option("--offset-px", offset_px,
                  "Also: ground truth shifted so the object moves this far in cam0's image");
   app.add_option("--config", config_path, "Annotate config (its quality: section is used)");
+  std::vector<std::string> overrides;
+  app.add_option("--set", overrides, "Config override key=value (repeatable)");
   CLI11_PARSE(app, argc, argv);
   using namespace bcot;
-  const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, {});
+  const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, overrides);
   if (!options.ok()) {
     std::fprintf(stderr, "quality_bench: %s\n", options.status().message().c_str());
     return 2;

@@ -135,6 +135,22 @@ TEST(YamlMapTest, MissingRequiredKeyNamesMapLineAndPath) {
   EXPECT_EQ(status.message(), "cfg.yaml:3: region.sigma: missing required key");
 }
 
+TEST(YamlMapTest, GetOptionalChoiceMapsNamesAndListsTheChoices) {
+  YamlMap map(Parse("kind: local\nform: fast\n"), "cfg.yaml", "");
+  int kind = 0;
+  ASSERT_TRUE(map.GetOptionalChoice("kind", {"global", "local"}, &kind).ok());
+  EXPECT_EQ(kind, 1);
+  int absent = 7;
+  ASSERT_TRUE(map.GetOptionalChoice("mode", {"a", "b"}, &absent).ok());
+  EXPECT_EQ(absent, 7);
+  int form = 0;
+  const Status bad = map.GetOptionalChoice("form", {"sqrt_energy", "irls"}, &form);
+  EXPECT_THAT(bad.message(), HasSubstr("cfg.yaml:2"));
+  EXPECT_THAT(bad.message(), HasSubstr("'fast' is not one of sqrt_energy | irls"));
+  EXPECT_EQ(form, 0);
+  EXPECT_TRUE(map.CheckNoUnknownKeys().ok());
+}
+
 TEST(YamlMapTest, GetOptionalKeepsDefaultWhenAbsentAndParsesWhenPresent) {
   YamlMap region(Parse(kConfig)["region"], "cfg.yaml", "region");
   double sigma = 1.25;

@@ -60,7 +60,7 @@ class YamlMap {
   Status Check() const;
 
   bool Has(const std::string& key) const;
-  YAML::Node Node(const std::string& key) const;  // marks the key as used
+  YAML::Node Node(const std::string& key) const;      // marks the key as used
   std::string KeyPath(const std::string& key) const;  // "cameras[0].K"
   std::string Where(const std::string& key) const;    // "rig.yaml:7: cameras[0].K"
 
@@ -73,6 +73,12 @@ class YamlMap {
   Status Get(const std::string& key, T* value);
   template <typename T>
   Status GetOptional(const std::string& key, T* value);
+
+  // An optional string whose value must be one of `names`: `*index` becomes its position in
+  // `names` (unchanged when the key is absent); another value is an error listing the choices
+  // ("'x' is not one of a | b").
+  Status GetOptionalChoice(const std::string& key, const std::vector<std::string>& names,
+                           int* index);
 
   // Fixed-length numeric sequence, e.g. K (4) or cam_from_rig (16). Required.
   Status GetFixedArray(const std::string& key, size_t expected_size, std::vector<double>* values);
