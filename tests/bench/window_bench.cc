@@ -203,6 +203,18 @@ int Run(int argc, char** argv) {
                    "by the window mean %.4f max %.4f mm\n",
                    name.c_str(), label.c_str(), axis_jitter.x(), axis_jitter.y(), axis_jitter.z(),
                    shift_mm, max_shift_mm);
+      if (step > 2 && step + 2 < static_cast<int>(truth->size())) {
+        // Jitter of each constant-speed stretch on its own (the slow one, then the fast one).
+        const TrajectoryErrors slow = CompareTrajectories(poses, *truth, centre, 0, step);
+        const TrajectoryErrors fast =
+            CompareTrajectories(poses, *truth, centre, step, static_cast<int>(truth->size()));
+        std::fprintf(stderr,
+                     "%s %s: jitter before the step rot %.4f trans %.4f, after rot %.4f trans "
+                     "%.4f\n",
+                     name.c_str(), label.c_str(), slow.jitter_rotation_deg,
+                     slow.jitter_translation_mm, fast.jitter_rotation_deg,
+                     fast.jitter_translation_mm);
+      }
     };
     print("per-frame", annotation->per_frame_rig_from_object);
     print("window", annotation->rig_from_object);
