@@ -25,6 +25,14 @@ Status MultiViewTrackerOptions::Validate() const {
   if (bootstrap_passes < 1) {
     violations.push_back(fmt::format("bootstrap_passes = {}, must be >= 1", bootstrap_passes));
   }
+  if (!(bootstrap_converged_deg > 0.0)) {
+    violations.push_back(
+        fmt::format("bootstrap_converged_deg = {}, must be > 0", bootstrap_converged_deg));
+  }
+  if (!(bootstrap_converged_mm > 0.0)) {
+    violations.push_back(
+        fmt::format("bootstrap_converged_mm = {}, must be > 0", bootstrap_converged_mm));
+  }
   return internal::JoinViolations("tracker", violations);
 }
 
@@ -125,9 +133,17 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
   FrameSummary summary;
   const bool has_refinement_models = refine_color_models_.front() != nullptr;
   for (int pass = 0; pass < options_.bootstrap_passes; ++pass) {
+    const Eigen::Isometry3d before = *rig_from_objcentre;
     LearnColors(images, *rig_from_objcentre, /*fresh=*/true);
     summary = Solve(images, rig_from_objcentre, linearisations, /*refine=*/false);
     if (!summary.usable()) break;
+    // rig_from_objcentre's translation is the object centre in the rig frame.
+    const double moved_deg = RotationDistanceDeg(rig_from_objcentre->linear(), before.linear());
+    const double moved_mm = (rig_from_objcentre->translation() - before.translation()).norm();
+    if (moved_deg < options_.bootstrap_converged_deg &&
+        moved_mm < options_.bootstrap_converged_mm) {
+      break;
+    }
   }
   if (has_refinement_models && summary.usable()) {
     LearnColors(images, *rig_from_objcentre, /*fresh=*/true);

@@ -214,12 +214,17 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name, An
       root, "tracker",
       [&](YamlMap& m) -> Status {
         BCOT_RETURN_IF_ERROR(m.GetOptional("velocity_prediction", &o->tracker.velocity_prediction));
-        return m.GetOptional("bootstrap_passes", &o->tracker.bootstrap_passes);
+        BCOT_RETURN_IF_ERROR(m.GetOptional("bootstrap_passes", &o->tracker.bootstrap_passes));
+        BCOT_RETURN_IF_ERROR(
+            m.GetOptional("bootstrap_converged_deg", &o->tracker.bootstrap_converged_deg));
+        return m.GetOptional("bootstrap_converged_mm", &o->tracker.bootstrap_converged_mm);
       },
       [&]() -> Status {
         MultiViewTrackerOptions own;  // this section's fields only
         own.velocity_prediction = o->tracker.velocity_prediction;
         own.bootstrap_passes = o->tracker.bootstrap_passes;
+        own.bootstrap_converged_deg = o->tracker.bootstrap_converged_deg;
+        own.bootstrap_converged_mm = o->tracker.bootstrap_converged_mm;
         return own.Validate();
       }));
 
@@ -369,6 +374,8 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
   section("tracker");
   line("velocity_prediction", number(o.tracker.velocity_prediction));
   line("bootstrap_passes", number(o.tracker.bootstrap_passes));
+  line("bootstrap_converged_deg", number(o.tracker.bootstrap_converged_deg));
+  line("bootstrap_converged_mm", number(o.tracker.bootstrap_converged_mm));
   section("views");
   line("cameras", List(o.views.cameras, Quote));
   line("weights", List(o.views.weights, number));

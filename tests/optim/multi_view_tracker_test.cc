@@ -61,12 +61,14 @@ std::vector<cv::Mat3b> RenderViews(const RayCaster& caster, const test::Binocula
 TEST(MultiViewTrackerOptionsTest, ValidateListsEveryViolation) {
   MultiViewTrackerOptions options;
   options.bootstrap_passes = 0;
+  options.bootstrap_converged_mm = 0.0;
   options.frame.rounds = 0;
   options.velocity_prediction = 1.5;
   options.color.bins_per_channel = 3;
   const Status status = options.Validate();
   ASSERT_EQ(status.code(), StatusCode::kInvalidConfig);
   EXPECT_THAT(status.message(), HasSubstr("bootstrap_passes = 0"));
+  EXPECT_THAT(status.message(), HasSubstr("bootstrap_converged_mm = 0"));
   EXPECT_THAT(status.message(), HasSubstr("rounds = 0"));
   EXPECT_THAT(status.message(), HasSubstr("velocity_prediction = 1.5"));
   EXPECT_THAT(status.message(), HasSubstr("bins_per_channel = 3"));
@@ -89,6 +91,24 @@ TEST_F(MultiViewTrackerTest, BinocularRecoversAFramePerturbedByFiveDegreesAndTen
         summary->initial_energy, summary->final_energy,
         test::RotationErrorDeg(pose, scene.rig_from_objcentre),
         test::TranslationErrorMm(pose, scene.rig_from_objcentre));
+    EXPECT_TRUE(summary->usable()) << summary->message;
+    EXPECT_THAT(pose, test::PoseNear(scene.rig_from_objcentre, 0.1, 0.2)) << "seed " << seed;
+  }
+}
+
+// A rough init_pose.txt (15° / 30 mm): the bootstrap passes repeat {learn colours, solve} until
+// the pose stops moving, so frame 0 ends as precise as from a 5° / 10 mm start. Seeds 2 and 6
+// are two starts from which the former two fixed passes ended 14–17° off (measured on this
+// scene: 2 of 6 seeds lost with two passes, 0 of 6 with converged passes; at 20° / 40 mm 6 of 6
+// lost with two passes, 1 of 6 with converged passes).
+TEST_F(MultiViewTrackerTest, BinocularRecoversAFramePerturbedByFifteenDegreesAndThirtyMm) {
+  const test::BinocularScene scene;
+  const std::vector<cv::Mat3b> images = RenderViews(*caster_, scene, scene.rig_from_objcentre, 11);
+  for (unsigned seed : {1u, 2u, 6u}) {
+    const std::unique_ptr<MultiViewTracker> tracker = MakeTracker(scene, /*binocular=*/true);
+    Eigen::Isometry3d pose = test::Perturb(scene.rig_from_objcentre, seed, 15.0, 30.0);
+    const StatusOr<FrameSummary> summary = tracker->Initialize(images, &pose);
+    ASSERT_TRUE(summary.ok()) << summary.status().message();
     EXPECT_TRUE(summary->usable()) << summary->message;
     EXPECT_THAT(pose, test::PoseNear(scene.rig_from_objcentre, 0.1, 0.2)) << "seed " << seed;
   }

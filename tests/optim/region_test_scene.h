@@ -55,16 +55,17 @@ inline Eigen::Isometry3d MakeCamFromObjcentre(const Eigen::Vector3d& rotation_ve
   return transform;
 }
 
-// A 5° / 10 mm perturbation about a seeded random axis and direction.
-inline Eigen::Isometry3d Perturb(const Eigen::Isometry3d& truth, unsigned seed) {
+// A 5° / 10 mm perturbation (or `degrees` / `mm`) about a seeded random axis and direction.
+inline Eigen::Isometry3d Perturb(const Eigen::Isometry3d& truth, unsigned seed,
+                                 double degrees = 5.0, double mm = 10.0) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal;
   const Eigen::Vector3d axis = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
   const Eigen::Vector3d direction =
       Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
   Eigen::Isometry3d perturbed = truth;
-  perturbed.linear() = truth.linear() * ExpSO3(axis * 5.0 * kTestPi / 180.0);
-  perturbed.translation() += 10.0 * direction;
+  perturbed.linear() = truth.linear() * ExpSO3(axis * degrees * kTestPi / 180.0);
+  perturbed.translation() += mm * direction;
   return perturbed;
 }
 
