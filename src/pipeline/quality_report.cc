@@ -631,6 +631,12 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
       QualityStatisticName(report.options.statistic), report.options.threshold_px,
       100.0 * (1.0 - report.options.min_found_fraction),
       100.0 * report.options.allowed_bad_fraction);
+  if (report.options.fit_rigid_motion) {
+    html +=
+        " The reprojection error of a contour point is the offset that the rigid motion fitted "
+        "(robustly) to all boundary offsets of the frame-view produces there, so boundaries found "
+        "on clutter, highlights or blurred edges at single points do not count as pose error.";
+  }
   if (!report.reasons.empty()) {
     html += "<ul>";
     for (const std::string& reason : report.reasons) html += "<li>" + HtmlEscape(reason) + "</li>";
@@ -663,10 +669,16 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
           Thumbnail(caster, camera.camera, camera.cam_from_rig * rig_from_object[frame],
                     sequence.image_paths[rig_index][frame], report.options));
       const ViewFrameQuality& q = report.frames[frame][v];
+      const std::string raw =
+          report.options.fit_rigid_motion
+              ? fmt::format(" (raw boundary offsets: median {:.2f} px, p90 {:.2f} px)",
+                            q.raw_median_px, q.raw_p90_px)
+              : "";
       html += fmt::format(
           "<figure><img alt='frame {0}' src='data:image/png;base64,{1}'><figcaption>frame {0}: "
-          "median {2:.2f} px, p90 {3:.2f} px, boundary found on {4}/{5}{6}</figcaption></figure>",
-          frame, png, q.median_px, q.p90_px, q.found, q.points, q.bad ? " — bad" : "");
+          "median {2:.2f} px, p90 {3:.2f} px{4}, boundary found on {5}/{6}{7}</figcaption>"
+          "</figure>",
+          frame, png, q.median_px, q.p90_px, raw, q.found, q.points, q.bad ? " — bad" : "");
     }
     html += "</div>\n";
   }
