@@ -217,6 +217,43 @@ int Run(int argc, char** argv) {
       }
     };
     print("per-frame", annotation->per_frame_rig_from_object);
+    if (step > 3 && step + 3 < static_cast<int>(truth->size())) {
+      // What a smoother can remove in each stretch: the true change of the centre's acceleration
+      // (rms per axis of the truth's third differences, mm/frame³) against the part of the
+      // per-frame solves' third differences that is noise (√20 · rms per-axis error, white noise).
+      const auto stretch = [&](int first, int end) {
+        const auto point = [&](const std::vector<Eigen::Isometry3d>& p, int k) {
+          return Eigen::Vector3d(p[k] * centre);
+        };
+        // Per-frame error about its mean over the stretch (the slowly varying bias is not
+        // frame-to-frame noise).
+        std::vector<Eigen::Vector3d> errors;
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (int t = first; t < end; ++t) {
+          errors.push_back(point(annotation->per_frame_rig_from_object, t) - point(*truth, t));
+          mean += errors.back() / (end - first);
+        }
+        double noise = 0.0, jerk = 0.0;
+        int jerks = 0;
+        for (const Eigen::Vector3d& error : errors) {
+          noise += (error - mean).squaredNorm() / 3.0 / errors.size();
+        }
+        for (int t = first + 1; t + 2 < end; ++t) {
+          jerk += (point(*truth, t + 2) - 3.0 * point(*truth, t + 1) + 3.0 * point(*truth, t) -
+                   point(*truth, t - 1))
+                      .squaredNorm() /
+                  3.0;
+          ++jerks;
+        }
+        return std::pair{std::sqrt(jerk / std::max(jerks, 1)), std::sqrt(20.0 * noise)};
+      };
+      const auto [slow_jerk, slow_noise] = stretch(0, step);
+      const auto [fast_jerk, fast_noise] = stretch(step, static_cast<int>(truth->size()));
+      std::fprintf(stderr,
+                   "%s: change of acceleration rms, truth vs per-frame noise (mm/frame³): before "
+                   "the step %.4f vs %.4f, after %.4f vs %.4f\n",
+                   name.c_str(), slow_jerk, slow_noise, fast_jerk, fast_noise);
+    }
     print("window", annotation->rig_from_object);
     const Eigen::Isometry3d objcentre_from_template = mesh->objcentre_from_template();
     for (size_t k = 0; k < variants.size(); ++k) {
