@@ -1,5 +1,7 @@
 // bcot annotate <sequence dir> --out DIR [--config FILE] [--set section.key=value]...
 // Annotates one sequence (see pipeline/annotator.h) with a progress line on stderr.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -41,8 +43,7 @@ int RunAnnotate(const AnnotateFlags& flags) {
       if (done == total) std::fprintf(stderr, "\n");
     };
   }
-  const Status status =
-      AnnotateSequenceDir(flags.sequence_dir, flags.out_dir, *options, progress);
+  const Status status = AnnotateSequenceDir(flags.sequence_dir, flags.out_dir, *options, progress);
   if (!status.ok()) {
     if (!flags.quiet) std::fprintf(stderr, "\n");
     PrintError("annotate", status.message());
@@ -53,8 +54,13 @@ int RunAnnotate(const AnnotateFlags& flags) {
   std::fprintf(stderr, "bcot annotate: wrote %s in %.1f s\n", flags.out_dir.c_str(), seconds);
   const StatusOr<QualityVerdict> verdict = ReadQualityVerdict(flags.out_dir);
   if (verdict.ok()) {
-    std::fprintf(stderr, "bcot annotate: quality %s (worst %.2f px); see %s/report.html\n",
-                 verdict->accepted ? "accepted" : "rejected", verdict->worst_px,
+    // A rejection says why (the first reason: view, bad frames, worst error or an invisible
+    // boundary); an acceptance its worst error.
+    const std::string detail = !verdict->accepted && !verdict->reasons.empty()
+                                   ? ": " + verdict->reasons.front()
+                                   : fmt::format(" (worst {:.2f} px)", verdict->worst_px);
+    std::fprintf(stderr, "bcot annotate: quality %s%s; see %s/report.html\n",
+                 verdict->accepted ? "accepted" : "rejected", detail.c_str(),
                  flags.out_dir.c_str());
   }
   return 0;

@@ -193,13 +193,17 @@ void Summarize(QualityReport* report) {
     summary.median_of_medians_px = AbsPercentile(medians, 0.5);
     summary.bad_fraction = num_frames > 0 ? double(summary.bad_frames) / num_frames : 0.0;
     if (summary.bad_fraction > options.allowed_bad_fraction) {
-      std::string reason = fmt::format(
-          "view {}: {} of {} frames ({:.0f}%) bad, {:.0f}% allowed; worst {} {:.2f} px > {} px",
-          summary.name, summary.bad_frames, num_frames, 100.0 * summary.bad_fraction,
-          100.0 * options.allowed_bad_fraction, QualityStatisticName(options.statistic),
-          summary.worst_px, options.threshold_px);
+      std::string reason =
+          fmt::format("view {}: {} of {} frames ({:.0f}%) bad, {:.0f}% allowed", summary.name,
+                      summary.bad_frames, num_frames, 100.0 * summary.bad_fraction,
+                      100.0 * options.allowed_bad_fraction);
+      if (summary.bad_frames > unverifiable) {
+        reason +=
+            fmt::format("; worst {} {:.2f} px > {} px", QualityStatisticName(options.statistic),
+                        summary.worst_px, options.threshold_px);
+      }
       if (unverifiable > 0) {
-        reason += fmt::format(" ({} frames without a visible boundary)", unverifiable);
+        reason += fmt::format("; {} frames without a visible boundary", unverifiable);
       }
       report->reasons.push_back(reason);
     }

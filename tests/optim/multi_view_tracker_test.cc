@@ -98,9 +98,8 @@ TEST_F(MultiViewTrackerTest, BinocularRecoversAFramePerturbedByFiveDegreesAndTen
 
 // A rough init_pose.txt (15° / 30 mm): the bootstrap passes repeat {learn colours, solve} until
 // the pose stops moving, so frame 0 ends as precise as from a 5° / 10 mm start. Seeds 2 and 6
-// are two starts from which the former two fixed passes ended 14–17° off (measured on this
-// scene: 2 of 6 seeds lost with two passes, 0 of 6 with converged passes; at 20° / 40 mm 6 of 6
-// lost with two passes, 1 of 6 with converged passes).
+// are starts from which two fixed passes (the former default; set bootstrap_passes = 2 to see)
+// end far off on this scene.
 TEST_F(MultiViewTrackerTest, BinocularRecoversAFramePerturbedByFifteenDegreesAndThirtyMm) {
   const test::BinocularScene scene;
   const std::vector<cv::Mat3b> images = RenderViews(*caster_, scene, scene.rig_from_objcentre, 11);

@@ -50,10 +50,10 @@ struct MultiViewTrackerOptions {
   double velocity_prediction = 1.0;
   // Most learn-and-solve passes of Initialize; >= 1. Passes stop early once one moved the pose
   // by less than both bootstrap_converged_deg (rotation) and bootstrap_converged_mm (object
-  // centre): the colour models were then learned where the solve ends. Measured on the demo
-  // scene (configs/synth/demo.yaml, init perturbed by init.rotation_deg / translation_mm): two
-  // fixed passes left frame 0 at 0.44° / 3.6 mm from a 20° / 40 mm start, converged passes
-  // reach the accuracy of a 5° / 10 mm start (see also the 15° / 30 mm tracker test).
+  // centre): the colour models were then learned where the solve ends. Measured by
+  // scripts/bench_init.sh (demo scene, 3 seeds): from 20° / 40 mm, frame 0 converges to the
+  // accuracy of a 5° / 10 mm start in 3 of 3 (two fixed passes: 1 of 3), from 30° / 50 mm in
+  // 1 of 3 (two passes: 0 of 3); see also the 15° / 30 mm tracker test.
   int bootstrap_passes = 8;
   // Convergence thresholds of the bootstrap passes; > 0.
   double bootstrap_converged_deg = 0.05;
