@@ -2,6 +2,8 @@
 # run_google_benchmark NAME [benchmark flags]: configures build-bench/ (Release, benchmarks on),
 # builds tests/bench/NAME and runs it with Google Benchmark's console table on stdout and the
 # JSON report into build-bench/NAME.json (read it with scripts/bench_json.py).
+# bench_summary NAME: runs the Python program on stdin with scripts/ on its import path (so it
+# can `import bench_json`) and build-bench/NAME.json as its argument.
 run_google_benchmark() {
   local name=$1
   shift
@@ -10,4 +12,8 @@ run_google_benchmark() {
   cmake --build "$dir" --target "$name"
   "$dir/tests/bench/$name" --benchmark_format=console \
     --benchmark_out="$dir/$name.json" --benchmark_out_format=json "$@"
+}
+
+bench_summary() {
+  PYTHONPATH=scripts python3 - "build-bench/$1.json"
 }

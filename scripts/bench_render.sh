@@ -7,9 +7,8 @@ cd "$(dirname "$0")/.."
 source scripts/bench_lib.sh
 run_google_benchmark bench_render "$@"
 
-python3 - "build-bench/bench_render.json" <<'EOF'
+bench_summary bench_render <<'EOF'
 import sys
-sys.path.insert(0, "scripts")
 import bench_json
 
 report = bench_json.load(

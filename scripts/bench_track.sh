@@ -8,9 +8,8 @@ cd "$(dirname "$0")/.."
 source scripts/bench_lib.sh
 run_google_benchmark bench_track "$@"
 
-python3 - "build-bench/bench_track.json" <<'PY'
+bench_summary bench_track <<'PY'
 import sys
-sys.path.insert(0, "scripts")
 import bench_json
 
 report = bench_json.load(
