@@ -3,7 +3,7 @@
 # binocular 90° sequence (one cluttered and one plain background) with ground truth, annotate
 # it with `bcot batch` and the annotation setting (configs/annotate.yaml), and check each
 # annotation's reprojection error (quality report, accept / reject).
-# Output: out/demo/sequences/binocular (the input contract of DESIGN.md, plus gt/) and
+# Output: out/demo/sequences/binocular (the input contract of docs/architecture.md, plus gt/) and
 # out/demo/annotations (the output contract: poses, quality.json, report.html, DONE; plus
 # summary.json / summary.html over the batch). Rerunning skips finished sequences.
 set -euo pipefail

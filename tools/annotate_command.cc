@@ -1,5 +1,5 @@
 // bcot annotate <sequence dir> --out DIR [--config FILE] [--set section.key=value]...
-// Annotates one sequence (see pipeline/annotator.h) with a progress line on stderr.
+// Annotates one sequence (see bcot/annotate/annotator.h) with a progress line on stderr.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,9 +8,9 @@
 #include <memory>
 #include <string>
 
-#include "bcot/pipeline/annotate_options.h"
-#include "bcot/pipeline/annotator.h"
-#include "bcot/pipeline/quality_report.h"
+#include "bcot/annotate/annotate_options.h"
+#include "bcot/annotate/annotator.h"
+#include "bcot/quality/quality_files.h"
 #include "commands.h"
 
 namespace bcot::tools {

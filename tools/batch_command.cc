@@ -1,13 +1,13 @@
 // bcot batch <root> --out DIR [--config FILE] [--set section.key=value]... [--jobs N]
 //            [--shard k/N] [--force]
-// Annotates every sequence under <root> (see pipeline/batch.h) with a live progress line on
+// Annotates every sequence under <root> (see bcot/annotate/batch.h) with a live progress line on
 // stderr; exit 0 when every sequence succeeded, 1 when any failed, 2 for usage/config errors.
 #include <cstdio>
 #include <memory>
 #include <string>
 
-#include "bcot/pipeline/annotate_options.h"
-#include "bcot/pipeline/batch.h"
+#include "bcot/annotate/annotate_options.h"
+#include "bcot/annotate/batch.h"
 #include "commands.h"
 
 namespace bcot::tools {
@@ -70,8 +70,7 @@ int RunBatchCommand(const BatchFlags& flags) {
     annotated += s.outcome == BatchOutcome::kAnnotated;
     skipped += s.outcome == BatchOutcome::kSkipped;
     if (s.outcome == BatchOutcome::kFailed) {
-      std::fprintf(stderr, "bcot batch: %s failed: %s\n", s.relative_path.c_str(),
-                   s.error.c_str());
+      std::fprintf(stderr, "bcot batch: %s failed: %s\n", s.relative_path.c_str(), s.error.c_str());
     } else {
       (s.accepted ? accepted : rejected) += 1;
     }
@@ -79,8 +78,7 @@ int RunBatchCommand(const BatchFlags& flags) {
   std::fprintf(stderr,
                "bcot batch: %d annotated, %d skipped, %d failed; %d accepted, %d rejected; "
                "summary: %s/summary.html\n",
-               annotated, skipped, result->num_failed(), accepted, rejected,
-               flags.out_dir.c_str());
+               annotated, skipped, result->num_failed(), accepted, rejected, flags.out_dir.c_str());
   return result->all_succeeded() ? 0 : 1;
 }
 
@@ -92,13 +90,13 @@ void AddBatchCommand(CLI::App& app, int* exit_code) {
       "batch", "Annotate every sequence (folder holding rig.yaml) under a directory tree");
   command->add_option("root", flags->root, "Directory tree of sequences")->required();
   AddConfigFlags(command, &flags->config);
-  command->add_option("--out", flags->out_dir, "Output root (mirrors the input tree)")
-      ->required();
+  command->add_option("--out", flags->out_dir, "Output root (mirrors the input tree)")->required();
   command->add_option("--jobs", flags->jobs, "Sequences in parallel (0 = one per core)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command->add_option("--shard", flags->shard,
-                      "Process shard k of N (0 <= k < N), e.g. $SLURM_ARRAY_TASK_ID/N")
+  command
+      ->add_option("--shard", flags->shard,
+                   "Process shard k of N (0 <= k < N), e.g. $SLURM_ARRAY_TASK_ID/N")
       ->capture_default_str();
   command->add_flag("--force", flags->force, "Redo sequences whose DONE matches");
   command->add_flag("--quiet", flags->quiet, "No progress on stderr");

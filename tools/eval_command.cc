@@ -8,11 +8,11 @@
 #include <memory>
 #include <string>
 
+#include "bcot/annotate/annotate_options.h"
 #include "bcot/core/file_util.h"
-#include "bcot/pipeline/annotate_options.h"
-#include "bcot/pipeline/eval_report.h"
-#include "bcot/pipeline/evaluator.h"
-#include "bcot/pipeline/region_monocular_tracker.h"
+#include "bcot/eval/eval_report.h"
+#include "bcot/eval/evaluator.h"
+#include "bcot/eval/online/region_monocular_tracker.h"
 #include "commands.h"
 
 namespace bcot::tools {
@@ -110,8 +110,7 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
       "Options (YAML keys, --set key=value): layout (bcot|rbot), rbot_variant (a_regular), "
       "rbot_poses (poses_first.txt), reset_rotation_deg (5), reset_translation_mm (50), "
       "curve.max_fraction_of_d (0.1), curve.steps (100). The Markdown table goes to stdout.");
-  command->callback(
-      [flags, exit_code] { *exit_code = RunEval(*flags); });
+  command->callback([flags, exit_code] { *exit_code = RunEval(*flags); });
 }
 
 }  // namespace bcot::tools

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "bcot/pipeline/exporter.h"
+#include "bcot/export/exporter.h"
 #include "commands.h"
 
 namespace bcot::tools {

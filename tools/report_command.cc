@@ -7,8 +7,9 @@
 #include <memory>
 #include <string>
 
-#include "bcot/pipeline/batch.h"
-#include "bcot/pipeline/quality_report.h"
+#include "bcot/annotate/batch.h"
+#include "bcot/annotate/regenerate_report.h"
+#include "bcot/quality/quality_files.h"
 #include "commands.h"
 
 namespace bcot::tools {
@@ -40,7 +41,8 @@ int RunReport(const ReportFlags& flags) {
     PrintError("report", "--sequence needs one annotation directory (with config.resolved.yaml)");
     return 2;
   }
-  const StatusOr<BatchResult> result = RegenerateBatchReports(flags.annotation_dir, flags.overrides);
+  const StatusOr<BatchResult> result =
+      RegenerateBatchReports(flags.annotation_dir, flags.overrides);
   if (!result.ok()) {
     PrintError("report", result.status().message());
     return result.status().ExitCode();
@@ -48,8 +50,8 @@ int RunReport(const ReportFlags& flags) {
   for (const BatchSequenceResult& s : result->sequences) {
     std::fprintf(stderr, "bcot report: %s: %s\n", s.relative_path.c_str(),
                  s.outcome == BatchOutcome::kFailed ? ("failed: " + s.error).c_str()
-                 : s.accepted                        ? "accepted"
-                                                     : "rejected");
+                 : s.accepted                       ? "accepted"
+                                                    : "rejected");
   }
   std::fprintf(stderr, "bcot report: summary: %s/summary.html\n", flags.annotation_dir.c_str());
   return result->all_succeeded() ? 0 : 1;
@@ -61,8 +63,9 @@ void AddReportCommand(CLI::App& app, int* exit_code) {
   auto flags = std::make_shared<ReportFlags>();
   CLI::App* command = app.add_subcommand(
       "report", "Regenerate quality reports of an annotation (or batch output) without solving");
-  command->add_option("annotation", flags->annotation_dir,
-                      "Annotation directory, or the output root of `bcot batch`")
+  command
+      ->add_option("annotation", flags->annotation_dir,
+                   "Annotation directory, or the output root of `bcot batch`")
       ->required()
       ->check(CLI::ExistingDirectory);
   command->add_option("--sequence", flags->sequence_dir,

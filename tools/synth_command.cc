@@ -1,15 +1,15 @@
 // bcot synth --config configs/synth/demo.yaml --out DIR [--set section.key=value]...
 // Writes a synthetic multi-view sequence with exact ground truth (see synthesizer.h).
+#include <fmt/format.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
 
-#include <fmt/format.h>
-
-#include "bcot/pipeline/synth_options.h"
-#include "bcot/pipeline/synthesizer.h"
+#include "bcot/synth/synth_options.h"
+#include "bcot/synth/synthesizer.h"
 #include "commands.h"
 
 namespace bcot::tools {
@@ -23,7 +23,8 @@ struct SynthFlags {
 };
 
 int RunSynth(const SynthFlags& flags) {
-  StatusOr<SynthOptions> options = ReadSynthOptions(flags.config.config_path, flags.config.overrides);
+  StatusOr<SynthOptions> options =
+      ReadSynthOptions(flags.config.config_path, flags.config.overrides);
   if (!options.ok()) {
     PrintError("synth", options.status().message());
     return options.status().ExitCode();
@@ -33,8 +34,9 @@ int RunSynth(const SynthFlags& flags) {
   if (flags.overwrite && fs::exists(flags.out_dir, error) && !fs::is_empty(flags.out_dir, error)) {
     // Only ever delete what an earlier `bcot synth` wrote.
     if (!fs::exists(flags.out_dir + "/synth.resolved.yaml", error)) {
-      PrintError("synth", flags.out_dir +
-                              ": --overwrite refused: not a bcot synth output (no synth.resolved.yaml)");
+      PrintError("synth",
+                 flags.out_dir +
+                     ": --overwrite refused: not a bcot synth output (no synth.resolved.yaml)");
       return 2;
     }
     fs::remove_all(flags.out_dir, error);
@@ -47,7 +49,8 @@ int RunSynth(const SynthFlags& flags) {
   SynthProgress progress;
   if (!flags.quiet) {
     progress = [](int done, int total) {
-      if (done == total || done % 10 == 0) std::fprintf(stderr, "bcot synth: frame %d/%d\n", done, total);
+      if (done == total || done % 10 == 0)
+        std::fprintf(stderr, "bcot synth: frame %d/%d\n", done, total);
     };
   }
   const Status status = Synthesize(*options, flags.out_dir, progress);
@@ -69,8 +72,8 @@ int RunSynth(const SynthFlags& flags) {
 
 void AddSynthCommand(CLI::App& app, int* exit_code) {
   auto flags = std::make_shared<SynthFlags>();
-  CLI::App* command = app.add_subcommand(
-      "synth", "Render a synthetic multi-view sequence with exact ground truth");
+  CLI::App* command =
+      app.add_subcommand("synth", "Render a synthetic multi-view sequence with exact ground truth");
   AddConfigFlags(command, &flags->config);
   command->add_option("--out", flags->out_dir, "Output sequence directory (new or empty)")
       ->required();

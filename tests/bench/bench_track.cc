@@ -20,14 +20,14 @@
 #include <utility>
 #include <vector>
 
+#include "bcot/annotate/annotate_options.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/sequence.h"
 #include "bcot/optim/multi_view_tracker.h"
-#include "bcot/pipeline/annotate_options.h"
-#include "bcot/pipeline/synth_options.h"
-#include "bcot/pipeline/synthesizer.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
+#include "bcot/synth/synth_options.h"
+#include "bcot/synth/synthesizer.h"
 
 namespace bcot {
 namespace {

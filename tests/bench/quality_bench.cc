@@ -25,11 +25,13 @@
 #include <string>
 #include <vector>
 
+#include "bcot/annotate/annotate_options.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/se3.h"
 #include "bcot/core/sequence.h"
-#include "bcot/pipeline/annotate_options.h"
-#include "bcot/pipeline/quality_report.h"
+#include "bcot/quality/boundary_search.h"
+#include "bcot/quality/quality_files.h"
+#include "bcot/quality/rigid_motion_fit.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
 

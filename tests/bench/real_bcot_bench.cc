@@ -28,11 +28,11 @@
 #include <string>
 #include <vector>
 
+#include "bcot/annotate/annotate_options.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/se3.h"
 #include "bcot/optim/multi_view_tracker.h"
-#include "bcot/pipeline/annotate_options.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
 

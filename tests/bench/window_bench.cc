@@ -22,13 +22,13 @@
 #include <string>
 #include <vector>
 
+#include "bcot/annotate/annotate_options.h"
+#include "bcot/annotate/annotator.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/se3.h"
 #include "bcot/core/sequence.h"
 #include "bcot/core/trajectory_metrics.h"
 #include "bcot/optim/window_problem.h"
-#include "bcot/pipeline/annotate_options.h"
-#include "bcot/pipeline/annotator.h"
 #include "bcot/render/mesh.h"
 
 namespace bcot {

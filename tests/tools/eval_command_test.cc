@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <string>
 
-#include "../pipeline/benchmark_test_data.h"
 #include "bcot/core/pose_io.h"
-#include "bcot/pipeline/synthesizer.h"
+#include "bcot/synth/synthesizer.h"
+#include "eval/benchmark_test_data.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -44,9 +44,9 @@ TEST(EvalCommandTest, ErrorsAreOneLineWithTheRightExitCode) {
   test::TempDir dir;
   test::WriteBcotSequence(dir.File("data"), "s", "Cat", test::MakeTrajectory(3));
   std::string output;
-  EXPECT_EQ(test::RunCommand(Bcot("eval --data " + dir.File("data") +
-                                  " --online --tracker-set frame.rounds=0"),
-                             &output),
+  EXPECT_EQ(test::RunCommand(
+                Bcot("eval --data " + dir.File("data") + " --online --tracker-set frame.rounds=0"),
+                &output),
             2);
   EXPECT_EQ(CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("frame.rounds"));

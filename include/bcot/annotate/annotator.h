@@ -1,0 +1,84 @@
+// Annotates one sequence directory (DESIGN.md input contract) and writes its annotation
+// directory (output contract): frame 0 from init_pose.txt by MultiViewTracker::Initialize
+// (colour bootstrap + joint solve), every later frame from the previous frame's pose by
+// MultiViewTracker::Track. With `window.enabled`, the temporal smoothing window
+// (window_problem.h) then refines the poses, streaming: it runs while the frames are solved and
+// keeps the templates of at most window.size + window.ContextFrames() (2 or 3) frames.
+//
+// Outputs in `out_dir`, each written atomically (temp + rename):
+//   rig_from_object.txt     one pose line per frame (O_t, mm)
+//   <camera>/pose.txt       cam_from_object per frame, for every rig camera (also unused ones)
+//   frames.csv              per frame: termination, rounds, iterations, energy per view, ms,
+//                           and the pose change the window made (0 when it is off)
+//   quality.json, quality.csv, report.html   the reprojection-error check (quality_report.h)
+//   config.resolved.yaml    every option used, the tool version, the sequence's absolute path
+//                           and the input hash
+//   DONE                    last; holds the config and input hashes. Removed first when a run
+//                           starts, so a directory with DONE is always complete and consistent.
+// A frame whose solve fails (object out of every view, solver failure) keeps the previous
+// pose and is recorded as such in frames.csv; the run continues.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bcot/annotate/annotate_options.h"
+#include "bcot/core/sequence.h"
+#include "bcot/core/status.h"
+#include "bcot/optim/frame_problem.h"
+
+namespace bcot {
+
+struct AnnotatedFrame {
+  FrameSummary summary;
+  double milliseconds = 0.0;  // wall time of the solve (information only)
+  // Pose change made by the temporal window (per-frame → final pose); 0 when it is off.
+  double window_rotation_deg = 0.0;
+  double window_translation_mm = 0.0;
+};
+
+struct SequenceAnnotation {
+  std::vector<std::string> view_names;                       // the cameras used, in solve order
+  std::vector<Eigen::Isometry3d> rig_from_object;            // per frame, O_t (final)
+  std::vector<Eigen::Isometry3d> per_frame_rig_from_object;  // before the window, O_t
+  std::vector<AnnotatedFrame> frames;                        // per frame
+  int failed_frames = 0;                                     // frames whose solve was not usable
+};
+
+// Called after every frame with (frames done, total frames).
+using AnnotateProgress = std::function<void(int done, int total)>;
+// Called after every frame's solve with the frame index, its per-frame rig_from_objcentre and
+// the level-0 templates of its last round (empty when the solve failed), i.e. what the window
+// receives; lets a caller run further windows on the same solves (tests/bench/window_bench.cc).
+// The templates are shared and immutable; the vector is valid during the call only.
+using AnnotateFrameObserver =
+    std::function<void(int frame, const Eigen::Isometry3d& rig_from_objcentre,
+                       const std::vector<ViewLinearisation>& linearisations)>;
+
+// Solves every frame. Errors: invalid options (kInvalidConfig); a selected camera missing from
+// the rig (kInvalidConfig); the mesh does not load, an image does not read or has the wrong
+// size, no init_pose.txt (kInvalidInput / kNotFound, naming the file).
+StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
+                                              const AnnotateOptions& options,
+                                              const AnnotateProgress& progress = {},
+                                              const AnnotateFrameObserver& observer = {});
+
+// A hash (16 hex digits) of everything a sequence's annotation depends on: rig.yaml,
+// object.yaml, the mesh file, init_pose.txt and every image file's name and size.
+StatusOr<std::string> SequenceInputHash(const Sequence& sequence);
+
+// The config hash DONE records: a hash (16 hex digits) of FormatAnnotateOptions(options).
+std::string AnnotateConfigHash(const AnnotateOptions& options);
+
+// Writes the annotation directory (see the header comment).
+Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,
+                       const AnnotateOptions& options, const std::string& input_hash,
+                       const SequenceAnnotation& annotation);
+
+// Loads the sequence at `sequence_dir`, annotates it and writes `out_dir`.
+Status AnnotateSequenceDir(const std::string& sequence_dir, const std::string& out_dir,
+                           const AnnotateOptions& options, const AnnotateProgress& progress = {});
+
+}  // namespace bcot

@@ -1,0 +1,76 @@
+// Options of the quality measurement and verdict (the `quality:` section of the annotate
+// config); what each step does is described in bcot/quality/quality_report.h.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+
+#include "bcot/core/status.h"
+#include "bcot/optim/color_model.h"
+#include "bcot/render/ray_caster.h"
+
+namespace bcot {
+
+enum class QualityStatistic { kMedian, kP90 };
+
+struct QualityOptions {
+  // A frame-view is bad when its statistic exceeds this (px, capture resolution); > 0.
+  double threshold_px = 2.0;
+  // Which per frame-view statistic is compared with threshold_px.
+  QualityStatistic statistic = QualityStatistic::kP90;
+  // A view may be bad on at most this fraction of frames; in [0, 1]. 0 = none.
+  double allowed_bad_fraction = 0.0;
+  // Boundary search along each normal within ±search_radius_px of the contour (px); > 0.
+  double search_radius_px = 6.0;
+  // Half-width of the step detector on the P_f profile (px); > 0.
+  double step_window_px = 2.0;
+  // Weight of the image edge in the boundary score: score(t) = D(t) + edge_weight · E(t), E the
+  // RGB step (|mean colour inside − outside| / √3, colours in [0, 1]) over the same windows.
+  // 0 = colour posteriors only (default: on bench_quality.sh data, clutter and distractor
+  // edges near the contour made ground-truth poses fail at 1); in [0, 10].
+  double edge_weight = 0.0;
+  // Minimum score for a boundary to count as found; in (0, 1 + edge_weight).
+  double min_contrast = 0.3;
+  // Below this fraction of contour points with a boundary, the frame-view is bad; in [0, 1].
+  double min_found_fraction = 0.5;
+  // Spacing of the contour samples (px); > 0.
+  double sample_spacing_px = 2.0;
+  // Histogram bins per channel of the colour model (must divide 256).
+  int bins_per_channel = 16;
+  // Colour model the posteriors come from: global (one histogram pair) or local (RBOT's
+  // histograms along the contour, which tell the object from clutter of similar colour
+  // elsewhere in the image).
+  ColorModelKind color_kind = ColorModelKind::kLocal;
+  // The colour model learns from no pixel within this distance (px) of the contour, so a pose
+  // a few px off does not teach each side the other's colours near the boundary it is judged
+  // against (which would pull the found boundary towards the pose); in [0, search_radius_px).
+  double color_margin_px = 4.0;
+  // Judge the offsets of one rigid motion robustly fitted to the raw boundary offsets instead
+  // of the raw offsets themselves (step 5 above).
+  bool fit_rigid_motion = true;
+  // Scale of the robust fit (px): Huber threshold, Tukey's at 3×; > 0.
+  double fit_scale_px = 1.0;
+  // Worst frames per view shown as thumbnails in report.html; >= 0.
+  int worst_frames = 4;
+  // Longest side of a thumbnail (px); >= 32.
+  int thumbnail_px = 320;
+
+  // Lists every violation (field, value, rule) in one kInvalidConfig status.
+  Status Validate() const;
+};
+
+const char* QualityStatisticName(QualityStatistic statistic);
+
+// The contour sampling of the quality measurement (one point every sample_spacing_px).
+ContourOptions QualityContourOptions(const QualityOptions& options);
+
+// The `quality:` YAML section (keys spelled as the fields; statistic: median | p90).
+// Unknown keys, wrong types and out-of-range values are kInvalidConfig errors naming
+// file:line: quality.key. `node` may be undefined (defaults kept).
+Status ParseQualityOptions(const YAML::Node& node, const std::string& source_name,
+                           QualityOptions* options);
+// The section as YAML lines ("quality:\n  threshold_px: 2\n..."), readable by the parser.
+std::string FormatQualityOptions(const QualityOptions& options);
+
+}  // namespace bcot

@@ -1,0 +1,253 @@
+#include "bcot/annotate/annotator.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <opencv2/imgcodecs.hpp>
+#include <string>
+#include <system_error>
+
+#include "bcot/core/file_util.h"
+#include "bcot/core/pose_io.h"
+#include "bcot/core/se3.h"
+#include "bcot/optim/multi_view_tracker.h"
+#include "bcot/optim/window_problem.h"
+#include "bcot/quality/quality_files.h"
+#include "bcot/render/mesh.h"
+#include "bcot/render/ray_caster.h"
+
+namespace bcot {
+namespace {
+
+// FNV-1a, 64 bit: a stable content hash (not cryptographic; it detects changed inputs).
+class Fnv1a {
+ public:
+  // Adds `bytes` and a field separator, so ("ab", "c") and ("a", "bc") differ.
+  void Add(const std::string& bytes) {
+    for (unsigned char byte : bytes) Mix(byte);
+    Mix(0xff);
+  }
+  std::string Hex() const { return fmt::format("{:016x}", hash_); }
+
+ private:
+  void Mix(unsigned char byte) {
+    hash_ ^= byte;
+    hash_ *= 1099511628211ULL;
+  }
+  uint64_t hash_ = 14695981039346656037ULL;
+};
+
+// Indices into the rig of the cameras `selection` asks for, with their weights.
+StatusOr<std::vector<TrackedView>> SelectViews(const Rig& rig, const ViewSelection& selection,
+                                               std::vector<int>* rig_indices) {
+  std::vector<int> indices;
+  if (selection.cameras.empty()) {
+    for (int i = 0; i < rig.size(); ++i) indices.push_back(i);
+  } else {
+    for (const std::string& name : selection.cameras) {
+      const int index = rig.Find(name);
+      if (index < 0) {
+        std::string known;
+        for (const RigCamera& camera : rig.cameras()) {
+          known += (known.empty() ? "" : ", ") + camera.camera.name;
+        }
+        return Status::InvalidConfig(
+            fmt::format("views.cameras: no camera '{}' in the rig (cameras: {})", name, known));
+      }
+      indices.push_back(index);
+    }
+  }
+  if (!selection.weights.empty() && selection.weights.size() != indices.size()) {
+    return Status::InvalidConfig(fmt::format("views.weights: {} weights for {} cameras",
+                                             selection.weights.size(), indices.size()));
+  }
+  std::vector<TrackedView> views;
+  for (size_t i = 0; i < indices.size(); ++i) {
+    const RigCamera& camera = rig[indices[i]];
+    views.push_back({camera.camera, camera.cam_from_rig,
+                     selection.weights.empty() ? 1.0 : selection.weights[i]});
+  }
+  *rig_indices = indices;
+  return views;
+}
+
+StatusOr<cv::Mat3b> ReadImage(const std::string& path, const Camera& camera) {
+  const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+  if (image.empty()) return Status::InvalidInput(path + ": cannot read the image");
+  if (image.cols != camera.width || image.rows != camera.height) {
+    return Status::InvalidInput(fmt::format("{}: image is {}x{}, camera '{}' in rig.yaml is {}x{}",
+                                            path, image.cols, image.rows, camera.name, camera.width,
+                                            camera.height));
+  }
+  return cv::Mat3b(image);
+}
+
+std::string FramesCsv(const SequenceAnnotation& annotation) {
+  std::string csv = "frame,termination,rounds,iterations,initial_energy,final_energy";
+  for (const std::string& name : annotation.view_names) csv += ",energy_" + name;
+  for (const std::string& name : annotation.view_names) csv += ",pixels_" + name;
+  csv += ",milliseconds,window_rotation_deg,window_translation_mm\n";
+  for (size_t f = 0; f < annotation.frames.size(); ++f) {
+    const AnnotatedFrame& frame = annotation.frames[f];
+    const FrameSummary& s = frame.summary;
+    csv += fmt::format("{},{},{},{},{:.6g},{:.6g}", f, FrameTerminationName(s.termination),
+                       s.rounds, s.iterations, s.initial_energy, s.final_energy);
+    for (const FrameViewSummary& view : s.views) csv += fmt::format(",{:.6g}", view.energy);
+    for (const FrameViewSummary& view : s.views) csv += fmt::format(",{}", view.pixels);
+    csv += fmt::format(",{:.1f},{:.6g},{:.6g}\n", frame.milliseconds, frame.window_rotation_deg,
+                       frame.window_translation_mm);
+  }
+  return csv;
+}
+
+}  // namespace
+
+std::string AnnotateConfigHash(const AnnotateOptions& options) {
+  Fnv1a hash;
+  hash.Add(FormatAnnotateOptions(options));
+  return hash.Hex();
+}
+
+StatusOr<std::string> SequenceInputHash(const Sequence& sequence) {
+  Fnv1a hash;
+  const std::string dir = sequence.dir;
+  for (const std::string& path : {dir + "/rig.yaml", dir + "/object.yaml",
+                                  sequence.object.mesh_path, dir + "/init_pose.txt"}) {
+    StatusOr<std::string> content = ReadTextFile(path);
+    if (!content.ok()) return content.status();
+    hash.Add(*content);
+  }
+  for (const std::vector<std::string>& camera : sequence.image_paths) {
+    for (const std::string& path : camera) {
+      std::error_code error;
+      const uintmax_t size = std::filesystem::file_size(path, error);
+      if (error) return Status::IoError(path + ": " + error.message());
+      hash.Add(std::filesystem::path(path).filename().string() + ":" + std::to_string(size));
+    }
+  }
+  return hash.Hex();
+}
+
+StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
+                                              const AnnotateOptions& options,
+                                              const AnnotateProgress& progress,
+                                              const AnnotateFrameObserver& observer) {
+  BCOT_RETURN_IF_ERROR(options.Validate());
+  if (!sequence.init_rig_from_object.has_value()) {
+    return Status::NotFound(sequence.dir + "/init_pose.txt: missing (the pose of frame 0)");
+  }
+  std::vector<int> rig_indices;
+  StatusOr<std::vector<TrackedView>> views = SelectViews(sequence.rig, options.views, &rig_indices);
+  if (!views.ok()) return views.status();
+  StatusOr<Mesh> mesh = Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm);
+  if (!mesh.ok()) return mesh.status();
+  const RayCaster caster(*mesh);
+  StatusOr<std::unique_ptr<MultiViewTracker>> tracker =
+      MultiViewTracker::Create(caster, *views, options.tracker);
+  if (!tracker.ok()) return tracker.status();
+
+  SequenceAnnotation annotation;
+  for (const TrackedView& view : *views) annotation.view_names.push_back(view.camera.name);
+  const Eigen::Isometry3d objcentre_from_template = mesh->objcentre_from_template();
+  const Eigen::Isometry3d template_from_objcentre = objcentre_from_template.inverse();
+  Eigen::Isometry3d rig_from_objcentre = *sequence.init_rig_from_object * template_from_objcentre;
+  std::unique_ptr<WindowSmoother> window;
+  if (options.window.enabled) window = std::make_unique<WindowSmoother>(options.window);
+  std::vector<ViewLinearisation> linearisations;
+  std::vector<ViewLinearisation>* const templates_out =
+      window || observer ? &linearisations : nullptr;
+
+  for (int frame = 0; frame < sequence.num_frames; ++frame) {
+    std::vector<cv::Mat3b> images;
+    for (size_t v = 0; v < rig_indices.size(); ++v) {
+      StatusOr<cv::Mat3b> image =
+          ReadImage(sequence.image_paths[rig_indices[v]][frame], (*views)[v].camera);
+      if (!image.ok()) return image.status();
+      images.push_back(*image);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    StatusOr<FrameSummary> summary =
+        frame == 0 ? (*tracker)->Initialize(images, &rig_from_objcentre, templates_out)
+                   : (*tracker)->Track(images, &rig_from_objcentre, templates_out);
+    if (!summary.ok()) return summary.status();
+    AnnotatedFrame record;
+    record.summary = *summary;
+    record.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (!summary->usable()) ++annotation.failed_frames;
+    annotation.frames.push_back(record);
+    annotation.rig_from_object.push_back(rig_from_objcentre * objcentre_from_template);
+    if (observer) observer(frame, rig_from_objcentre, linearisations);
+    if (window) window->Push(rig_from_objcentre, std::move(linearisations));
+    if (progress) progress(frame + 1, sequence.num_frames);
+  }
+  annotation.per_frame_rig_from_object = annotation.rig_from_object;
+  if (window) {
+    window->Finish();
+    for (int frame = 0; frame < sequence.num_frames; ++frame) {
+      const Eigen::Isometry3d smoothed =
+          window->rig_from_objcentre()[frame] * objcentre_from_template;
+      AnnotatedFrame& record = annotation.frames[frame];
+      record.window_rotation_deg =
+          RotationDistanceDeg(annotation.rig_from_object[frame].linear(), smoothed.linear());
+      record.window_translation_mm =
+          (annotation.rig_from_object[frame].translation() - smoothed.translation()).norm();
+      annotation.rig_from_object[frame] = smoothed;
+    }
+  }
+  return annotation;
+}
+
+Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,
+                       const AnnotateOptions& options, const std::string& input_hash,
+                       const SequenceAnnotation& annotation) {
+  BCOT_RETURN_IF_ERROR(CreateDirectories(out_dir));
+  BCOT_RETURN_IF_ERROR(WritePoseFile(out_dir + "/rig_from_object.txt", annotation.rig_from_object));
+  for (const RigCamera& camera : sequence.rig.cameras()) {
+    std::vector<Eigen::Isometry3d> cam_from_object;
+    for (const Eigen::Isometry3d& rig_from_object : annotation.rig_from_object) {
+      cam_from_object.push_back(camera.cam_from_rig * rig_from_object);
+    }
+    BCOT_RETURN_IF_ERROR(CreateDirectories(out_dir + "/" + camera.camera.name));
+    BCOT_RETURN_IF_ERROR(
+        WritePoseFile(out_dir + "/" + camera.camera.name + "/pose.txt", cam_from_object));
+  }
+  BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/frames.csv", FramesCsv(annotation)));
+  const std::string config = FormatAnnotateOptions(options);
+  const std::string header = fmt::format(
+      "# bcot annotate: fully resolved options\n# bcot_version: {}\n# sequence: {}\n"
+      "# input_hash: {}\n",
+      BCOT_VERSION, sequence.dir, input_hash);
+  BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/config.resolved.yaml", header + config));
+  return WriteFileAtomic(
+      out_dir + "/DONE",
+      fmt::format("config_hash: {}\ninput_hash: {}\nframes: {}\nfailed_frames: {}\n",
+                  AnnotateConfigHash(options), input_hash, annotation.frames.size(),
+                  annotation.failed_frames));
+}
+
+Status AnnotateSequenceDir(const std::string& sequence_dir, const std::string& out_dir,
+                           const AnnotateOptions& options, const AnnotateProgress& progress) {
+  // An absolute path, so config.resolved.yaml lets `bcot report` find the images again.
+  StatusOr<Sequence> sequence =
+      LoadSequence(std::filesystem::absolute(sequence_dir).lexically_normal().string(),
+                   /*require_init_pose=*/true);
+  if (!sequence.ok()) return sequence.status();
+  StatusOr<std::string> input_hash = SequenceInputHash(*sequence);
+  if (!input_hash.ok()) return input_hash.status();
+  // A directory holding DONE is complete; take DONE away before anything in it changes.
+  std::error_code error;
+  std::filesystem::remove(out_dir + "/DONE", error);
+  if (error) return Status::IoError(out_dir + "/DONE: cannot remove: " + error.message());
+  StatusOr<SequenceAnnotation> annotation = AnnotateSequence(*sequence, options, progress);
+  if (!annotation.ok()) return annotation.status();
+  StatusOr<QualityReport> quality = WriteQualityReport(
+      out_dir, *sequence, annotation->rig_from_object, annotation->view_names, options.quality);
+  if (!quality.ok()) return quality.status();
+  return WriteAnnotation(out_dir, *sequence, options, *input_hash, *annotation);
+}
+
+}  // namespace bcot

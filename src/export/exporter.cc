@@ -1,0 +1,288 @@
+#include "bcot/export/exporter.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "bcot/core/camera.h"
+#include "bcot/core/config_file.h"
+#include "bcot/core/file_util.h"
+#include "bcot/core/pose_io.h"
+#include "bcot/core/sequence.h"
+#include "bcot/core/yaml_util.h"
+#include "bcot/eval/bcot_layout.h"
+#include "bcot/render/mesh.h"
+
+namespace bcot {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Empty when `name` can be one folder / file-name component.
+std::string FolderNameProblem(const std::string& name) {
+  if (name.empty()) return "is empty";
+  if (name == "." || name == "..") return "is not a folder name";
+  if (name.find('/') != std::string::npos || name.find('\\') != std::string::npos) {
+    return "must not contain '/' or '\\'";
+  }
+  return "";
+}
+
+bool IsWholeNumber(double value) { return std::abs(value - std::round(value)) < 1e-9; }
+
+// Mesh as OBJ text (mm, the template frame).
+std::string FormatObj(const Mesh& mesh, const std::string& object) {
+  std::string text = fmt::format("# {}: written by bcot export (bcot " BCOT_VERSION
+                                 "), units mm, object template frame\n"
+                                 "# {} vertices, {} triangles\n",
+                                 object, mesh.vertices().size(), mesh.triangles().size());
+  for (const Eigen::Vector3f& v : mesh.vertices()) {
+    text += fmt::format("v {} {} {}\n", v.x(), v.y(), v.z());
+  }
+  for (const Eigen::Vector3i& t : mesh.triangles()) {
+    text += fmt::format("f {} {} {}\n", t.x() + 1, t.y() + 1, t.z() + 1);
+  }
+  return text;
+}
+
+// Remap tables taking a distorted image of `camera` to the ideal pinhole image with the same K.
+void UndistortMaps(const Camera& camera, cv::Mat1f* map_x, cv::Mat1f* map_y) {
+  map_x->create(camera.height, camera.width);
+  map_y->create(camera.height, camera.width);
+  for (int v = 0; v < camera.height; ++v) {
+    for (int u = 0; u < camera.width; ++u) {
+      const Eigen::Vector2d ideal((u - camera.cx) / camera.fx, (v - camera.cy) / camera.fy);
+      const Eigen::Vector2d distorted = camera.Distort(ideal);
+      (*map_x)(v, u) = static_cast<float>(camera.fx * distorted.x() + camera.cx);
+      (*map_y)(v, u) = static_cast<float>(camera.fy * distorted.y() + camera.cy);
+    }
+  }
+}
+
+StatusOr<std::vector<Eigen::Isometry3d>> ReadCamFromObject(const std::string& annotation_dir,
+                                                           const RigCamera& rig_camera) {
+  const fs::path per_camera = fs::path(annotation_dir) / rig_camera.camera.name / "pose.txt";
+  std::error_code error;
+  if (fs::exists(per_camera, error)) return ReadPoseFile(per_camera.string());
+  const fs::path rig_path = fs::path(annotation_dir) / "rig_from_object.txt";
+  if (!fs::exists(rig_path, error)) {
+    return Status::NotFound(
+        fmt::format("{}: annotation not found (nor {})", rig_path.string(), per_camera.string()));
+  }
+  BCOT_ASSIGN_OR_RETURN(std::vector<Eigen::Isometry3d> poses, ReadPoseFile(rig_path.string()));
+  for (Eigen::Isometry3d& pose : poses) pose = rig_camera.cam_from_rig * pose;
+  return poses;
+}
+
+struct CameraExport {
+  int index = 0;
+  std::string scene;
+  Camera camera;    // as in rig.yaml
+  Camera exported;  // undistorted and scaled
+  std::vector<Eigen::Isometry3d> cam_from_object;
+  std::string pose_source;
+};
+
+}  // namespace
+
+Status ExportOptions::Validate() const {
+  std::vector<std::string> violations;
+  if (frame_step < 1 || frame_step > 1000) {
+    violations.push_back(fmt::format("frame_step = {}, must be in [1, 1000]", frame_step));
+  }
+  if (!(image_scale > 0.0 && image_scale <= 1.0)) {
+    violations.push_back(fmt::format("image_scale = {}, must be in (0, 1]", image_scale));
+  }
+  for (size_t i = 0; i < cameras.size(); ++i) {
+    if (cameras[i].empty()) violations.push_back(fmt::format("cameras[{}] is empty", i));
+    for (size_t j = 0; j < i; ++j) {
+      if (cameras[i] == cameras[j]) {
+        violations.push_back(fmt::format("cameras[{}] = '{}' is listed twice", i, cameras[i]));
+      }
+    }
+  }
+  if (!scene.empty() && !FolderNameProblem(scene).empty()) {
+    violations.push_back(fmt::format("scene = '{}' {}", scene, FolderNameProblem(scene)));
+  }
+  if (!object.empty() && !FolderNameProblem(object).empty()) {
+    violations.push_back(fmt::format("object = '{}' {}", object, FolderNameProblem(object)));
+  }
+  if (violations.empty()) return Status::Ok();
+  return Status::InvalidConfig(JoinMessages(violations));
+}
+
+StatusOr<ExportOptions> ReadExportOptions(const std::string& path,
+                                          const std::vector<std::string>& overrides) {
+  std::string source;
+  BCOT_ASSIGN_OR_RETURN(const YAML::Node root, LoadConfigWithOverrides(path, overrides, &source));
+  ExportOptions options;
+  YamlMap map(root, source, "", StatusCode::kInvalidConfig);
+  BCOT_RETURN_IF_ERROR(map.GetOptional("frame_step", &options.frame_step));
+  BCOT_RETURN_IF_ERROR(map.GetOptional("image_scale", &options.image_scale));
+  BCOT_RETURN_IF_ERROR(map.GetOptional("cameras", &options.cameras));
+  BCOT_RETURN_IF_ERROR(map.GetOptional("scene", &options.scene));
+  BCOT_RETURN_IF_ERROR(map.GetOptional("object", &options.object));
+  BCOT_RETURN_IF_ERROR(map.GetOptional("overwrite", &options.overwrite));
+  BCOT_RETURN_IF_ERROR(map.CheckNoUnknownKeys());
+  const Status valid = options.Validate();
+  if (!valid.ok()) return valid.WithContext(source);
+  return options;
+}
+
+std::string FormatExportOptions(const ExportOptions& o) {
+  std::string cameras;
+  for (const std::string& camera : o.cameras) {
+    cameras += (cameras.empty() ? "" : ", ") + FormatYamlString(camera);
+  }
+  return fmt::format(
+      "# bcot export: fully resolved options (bcot " BCOT_VERSION
+      ")\n"
+      "frame_step: {}\nimage_scale: {}\ncameras: [{}]\nscene: {}\nobject: {}\noverwrite: {}\n",
+      o.frame_step, o.image_scale, cameras, FormatYamlString(o.scene), FormatYamlString(o.object),
+      o.overwrite ? "true" : "false");
+}
+
+StatusOr<ExportSummary> ExportToBcot(const std::string& sequence_dir,
+                                     const std::string& annotation_dir, const std::string& out_root,
+                                     const ExportOptions& options) {
+  BCOT_RETURN_IF_ERROR(options.Validate());
+  BCOT_ASSIGN_OR_RETURN(const Sequence sequence,
+                        LoadSequence(sequence_dir, /*require_init_pose=*/false));
+  const std::string object = options.object.empty() ? sequence.object.name : options.object;
+  if (!FolderNameProblem(object).empty()) {
+    return Status::InvalidInput(
+        fmt::format("{}/object.yaml: name '{}' {}; set the export option "
+                    "`object`",
+                    sequence_dir, object, FolderNameProblem(object)));
+  }
+  std::string scene = options.scene;
+  if (scene.empty()) {
+    fs::path dir = fs::path(sequence_dir).lexically_normal();
+    if (dir.filename().empty()) dir = dir.parent_path();
+    scene = fs::absolute(dir).filename().string();
+  }
+
+  // Which cameras, and everything about them, before writing anything.
+  std::vector<std::string> names = options.cameras;
+  if (names.empty()) names.push_back(sequence.rig[0].camera.name);
+  std::vector<CameraExport> exports;
+  for (const std::string& name : names) {
+    CameraExport e;
+    e.index = sequence.rig.Find(name);
+    if (e.index < 0) {
+      return Status::InvalidConfig(
+          fmt::format("cameras: '{}' is not a camera of {}/rig.yaml", name, sequence_dir));
+    }
+    e.scene = names.size() > 1 ? scene + "_" + name : scene;
+    e.camera = sequence.rig[e.index].camera;
+    const double w = e.camera.width * options.image_scale,
+                 h = e.camera.height * options.image_scale;
+    if (!IsWholeNumber(w) || !IsWholeNumber(h) || std::lround(w) < 1 || std::lround(h) < 1) {
+      return Status::InvalidConfig(fmt::format(
+          "image_scale = {}: camera '{}' is {}x{}, scaled {}x{} is not a whole number of pixels",
+          options.image_scale, name, e.camera.width, e.camera.height, w, h));
+    }
+    Camera pinhole = e.camera;
+    pinhole.distortion.fill(0.0);
+    e.exported = pinhole.Scaled(options.image_scale);
+    BCOT_ASSIGN_OR_RETURN(e.cam_from_object,
+                          ReadCamFromObject(annotation_dir, sequence.rig[e.index]));
+    if (static_cast<int>(e.cam_from_object.size()) != sequence.num_frames) {
+      return Status::InvalidInput(
+          fmt::format("{}: annotation has {} poses, the sequence has {} frames", annotation_dir,
+                      e.cam_from_object.size(), sequence.num_frames));
+    }
+    exports.push_back(std::move(e));
+  }
+  BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
+                        Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
+
+  ExportSummary summary;
+  for (const CameraExport& e : exports) {
+    const fs::path scene_dir = fs::path(out_root) / e.scene;
+    const fs::path object_dir = scene_dir / object;
+    const std::string k_text = FormatBcotIntrinsics(e.exported);
+    const std::string k_path = (scene_dir / "K.txt").string();
+    std::error_code error;
+    if (fs::exists(k_path, error)) {
+      BCOT_ASSIGN_OR_RETURN(const std::string existing, ReadTextFile(k_path));
+      if (existing != k_text) {
+        return Status::InvalidInput(fmt::format(
+            "{}: holds other intrinsics than camera '{}' of {} ({}); export to another scene",
+            k_path, e.camera.name, sequence_dir, TrimWhitespace(k_text)));
+      }
+    }
+    if (fs::exists(object_dir, error) && !fs::is_empty(object_dir, error)) {
+      if (!options.overwrite) {
+        return Status::InvalidConfig(fmt::format(
+            "{}: exists and is not empty; set overwrite to replace it", object_dir.string()));
+      }
+      fs::remove_all(object_dir, error);
+      if (error) {
+        return Status::IoError(
+            fmt::format("{}: cannot remove: {}", object_dir.string(), error.message()));
+      }
+    }
+    BCOT_RETURN_IF_ERROR(CreateDirectories(object_dir.string()));
+
+    cv::Mat1f map_x, map_y;
+    if (e.camera.HasDistortion()) {
+      UndistortMaps(e.camera, &map_x, &map_y);
+      summary.undistorted = true;
+    }
+    std::vector<int> frames;
+    for (int f = 0; f < sequence.num_frames; f += options.frame_step) frames.push_back(f);
+    std::vector<Status> statuses(frames.size());
+    const cv::Size out_size(e.exported.width, e.exported.height);
+    tbb::parallel_for(size_t{0}, frames.size(), [&](size_t i) {
+      const std::string& path = sequence.image_paths[e.index][frames[i]];
+      cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+      if (image.empty()) {
+        statuses[i] = Status::InvalidInput(fmt::format("{}: cannot read the image", path));
+        return;
+      }
+      if (image.cols != e.camera.width || image.rows != e.camera.height) {
+        statuses[i] = Status::InvalidInput(
+            fmt::format("{}: image is {}x{}, rig.yaml says {}x{} for camera '{}'", path, image.cols,
+                        image.rows, e.camera.width, e.camera.height, e.camera.name));
+        return;
+      }
+      if (!map_x.empty()) {
+        cv::Mat undistorted;
+        cv::remap(image, undistorted, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+        image = undistorted;
+      }
+      if (out_size != image.size()) {
+        cv::Mat resized;
+        cv::resize(image, resized, out_size, 0, 0, cv::INTER_AREA);
+        image = resized;
+      }
+      std::vector<uchar> png;
+      if (!cv::imencode(".png", image, png)) {
+        statuses[i] = Status::Internal(fmt::format("{}: PNG encoding failed", path));
+        return;
+      }
+      statuses[i] = WriteFileAtomic((object_dir / fmt::format("{:04d}.png", i)).string(),
+                                    std::string(png.begin(), png.end()));
+    });
+    for (const Status& status : statuses) BCOT_RETURN_IF_ERROR(status);
+
+    std::vector<Eigen::Isometry3d> poses;
+    for (int f : frames) poses.push_back(e.cam_from_object[f]);
+    BCOT_RETURN_IF_ERROR(WritePoseFile((object_dir / "pose.txt").string(), poses));
+    BCOT_RETURN_IF_ERROR(WriteFileAtomic(k_path, k_text));
+    summary.scene_dirs.push_back(scene_dir.string());
+    summary.frames_per_camera = static_cast<int>(frames.size());
+  }
+  summary.model_path = BcotModelPath(out_root, object);
+  BCOT_RETURN_IF_ERROR(WriteFileAtomic(summary.model_path, FormatObj(mesh, object)));
+  summary.width = exports[0].exported.width;
+  summary.height = exports[0].exported.height;
+  return summary;
+}
+
+}  // namespace bcot

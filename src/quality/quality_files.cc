@@ -1,0 +1,274 @@
+#include "bcot/quality/quality_files.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "bcot/core/file_util.h"
+#include "bcot/core/html.h"
+#include "bcot/render/mesh.h"
+
+namespace bcot {
+namespace {
+
+std::string JsonNumber(double value) {
+  return std::isfinite(value) ? fmt::format("{:.4f}", value) : "";
+}
+
+// The SVG plot of one view's median and p90 over time, with the threshold line.
+std::string ViewPlot(const QualityReport& report, size_t v) {
+  const int width = 760, height = 180, left = 40, bottom = 20;
+  const int num_frames = static_cast<int>(report.frames.size());
+  double y_max = report.options.threshold_px * 1.5;
+  for (const auto& frame : report.frames) {
+    if (std::isfinite(frame[v].p90_px)) y_max = std::max(y_max, frame[v].p90_px * 1.05);
+  }
+  auto x_of = [&](int f) {
+    return left + (width - left - 10) * (num_frames > 1 ? double(f) / (num_frames - 1) : 0.5);
+  };
+  auto y_of = [&](double value) { return (height - bottom) * (1.0 - value / y_max) + 5; };
+  auto polyline = [&](bool p90, const char* color) {
+    std::string points;
+    for (int f = 0; f < num_frames; ++f) {
+      const double value = p90 ? report.frames[f][v].p90_px : report.frames[f][v].median_px;
+      if (std::isfinite(value)) points += fmt::format("{:.1f},{:.1f} ", x_of(f), y_of(value));
+    }
+    return fmt::format("<polyline fill='none' stroke='{}' stroke-width='1.5' points='{}'/>", color,
+                       points);
+  };
+  std::string svg = fmt::format(
+      "<svg xmlns='http://www.w3.org/2000/svg' width='{}' height='{}' class='plot'>"
+      "<rect x='{}' y='5' width='{}' height='{}' fill='#fafafa' stroke='#ccc'/>",
+      width, height + 10, left, width - left - 10, height - bottom);
+  for (double tick : {0.0, report.options.threshold_px, y_max}) {
+    svg += fmt::format("<text x='2' y='{:.1f}' font-size='10'>{:.1f}</text>", y_of(tick) + 3, tick);
+  }
+  svg += fmt::format(
+      "<line x1='{}' x2='{}' y1='{:.1f}' y2='{:.1f}' stroke='#d33' stroke-dasharray='4 3'/>", left,
+      width - 10, y_of(report.options.threshold_px), y_of(report.options.threshold_px));
+  for (int f = 0; f < num_frames; ++f) {
+    if (report.frames[f][v].bad) {
+      svg += fmt::format("<rect x='{:.1f}' y='5' width='2' height='{}' fill='#f4b4b4'/>",
+                         x_of(f) - 1, height - bottom);
+    }
+  }
+  svg += polyline(false, "#2a6");
+  svg += polyline(true, "#36c");
+  svg += fmt::format("<text x='{}' y='{}' font-size='10'>frame 0</text>", left, height + 8);
+  svg += fmt::format("<text x='{}' y='{}' font-size='10' text-anchor='end'>frame {}</text>",
+                     width - 10, height + 8, std::max(0, num_frames - 1));
+  return svg + "</svg>";
+}
+
+// A PNG thumbnail (base64) of one frame-view with the annotated contour drawn.
+StatusOr<std::string> Thumbnail(const RayCaster& caster, const Camera& camera,
+                                const Eigen::Isometry3d& cam_from_object,
+                                const std::string& image_path, const QualityOptions& options) {
+  cv::Mat image = cv::imread(image_path, cv::IMREAD_COLOR);
+  if (image.empty()) return Status::InvalidInput(image_path + ": cannot read the image");
+  const std::vector<ContourPoint> contour =
+      caster.ExtractContour(camera, cam_from_object, QualityContourOptions(options));
+  cv::Rect box(0, 0, image.cols, image.rows);
+  if (!contour.empty()) {
+    cv::Rect2d bounds(contour[0].pixel.x(), contour[0].pixel.y(), 0, 0);
+    for (const ContourPoint& point : contour) {
+      bounds |= cv::Rect2d(point.pixel.x(), point.pixel.y(), 1, 1);
+    }
+    const double margin = 0.15 * std::max(bounds.width, bounds.height) + 8;
+    box = cv::Rect(cv::Point(int(bounds.x - margin), int(bounds.y - margin)),
+                   cv::Point(int(bounds.br().x + margin), int(bounds.br().y + margin))) &
+          cv::Rect(0, 0, image.cols, image.rows);
+  }
+  const double scale =
+      std::min(4.0, double(options.thumbnail_px) / std::max(box.width, box.height));
+  cv::Mat crop;
+  cv::resize(image(box), crop, cv::Size(), scale, scale, cv::INTER_AREA);
+  constexpr int kShift = 4;  // fixed-point bits for sub-pixel drawing
+  std::vector<std::vector<cv::Point>> polylines;
+  int current = -1;
+  for (const ContourPoint& point : contour) {
+    if (point.contour_id != current) {
+      polylines.emplace_back();
+      current = point.contour_id;
+    }
+    const Eigen::Vector2d p = (point.pixel - Eigen::Vector2d(box.x, box.y)) * scale;
+    polylines.back().emplace_back(int(std::lround(p.x() * (1 << kShift))),
+                                  int(std::lround(p.y() * (1 << kShift))));
+  }
+  cv::polylines(crop, polylines, true, cv::Scalar(0, 255, 0), 1, cv::LINE_AA, kShift);
+  std::vector<unsigned char> png;
+  if (!cv::imencode(".png", crop, png)) return Status::Internal("cannot encode a PNG thumbnail");
+  return Base64(png);
+}
+
+}  // namespace
+
+std::string QualityJson(const QualityReport& report) {
+  nlohmann::ordered_json json;
+  json["sequence"] = report.sequence_dir;
+  json["verdict"] = report.accepted ? "accepted" : "rejected";
+  json["reasons"] = report.reasons;
+  json["options"] = {{"threshold_px", report.options.threshold_px},
+                     {"statistic", QualityStatisticName(report.options.statistic)},
+                     {"allowed_bad_fraction", report.options.allowed_bad_fraction},
+                     {"search_radius_px", report.options.search_radius_px},
+                     {"fit_rigid_motion", report.options.fit_rigid_motion}};
+  json["num_frames"] = report.frames.size();
+  double worst = 0.0;
+  for (const ViewQualitySummary& view : report.views) {
+    worst = std::max(worst, view.worst_px);
+    json["views"].push_back({{"name", view.name},
+                             {"bad_frames", view.bad_frames},
+                             {"bad_fraction", view.bad_fraction},
+                             {"median_of_medians_px", view.median_of_medians_px},
+                             {"worst_px", view.worst_px},
+                             {"worst_frames", view.worst_frames}});
+  }
+  json["worst_px"] = worst;
+  for (size_t f = 0; f < report.frames.size(); ++f) {
+    nlohmann::ordered_json frame = {{"frame", f}};
+    for (size_t v = 0; v < report.view_names.size(); ++v) {
+      const ViewFrameQuality& q = report.frames[f][v];
+      frame["views"].push_back({{"median_px", q.median_px},
+                                {"p90_px", q.p90_px},
+                                {"raw_median_px", q.raw_median_px},
+                                {"raw_p90_px", q.raw_p90_px},
+                                {"points", q.points},
+                                {"found", q.found},
+                                {"bad", q.bad}});
+    }
+    json["frames"].push_back(frame);
+  }
+  return json.dump(1) + "\n";
+}
+
+std::string QualityCsv(const QualityReport& report) {
+  std::string csv = "frame,view,median_px,p90_px,raw_median_px,raw_p90_px,points,found,bad\n";
+  for (size_t f = 0; f < report.frames.size(); ++f) {
+    for (size_t v = 0; v < report.view_names.size(); ++v) {
+      const ViewFrameQuality& q = report.frames[f][v];
+      csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", f, report.view_names[v],
+                         JsonNumber(q.median_px), JsonNumber(q.p90_px), JsonNumber(q.raw_median_px),
+                         JsonNumber(q.raw_p90_px), q.points, q.found, q.bad ? 1 : 0);
+    }
+  }
+  return csv;
+}
+
+StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& sequence,
+                                  const std::vector<Eigen::Isometry3d>& rig_from_object) {
+  BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
+                        Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
+  const RayCaster caster(mesh);
+  std::string html = fmt::format(
+      "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
+      "<title>bcot quality: {0}</title><style>"
+      "body{{font-family:sans-serif;margin:20px;color:#222}}"
+      ".accepted{{background:#dfd;border:1px solid #6a6}}.rejected{{background:#fdd;"
+      "border:1px solid #c66}}.verdict{{padding:10px;margin:10px 0}}"
+      "figure{{display:inline-block;margin:6px}}figcaption{{font-size:12px}}"
+      "table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:3px 8px}}"
+      "</style></head><body>\n<h1>Quality report</h1><p>Sequence: <code>{0}</code>, {1} frames, "
+      "views: {2}</p>\n",
+      HtmlEscape(report.sequence_dir), report.frames.size(), report.view_names.size());
+  html += fmt::format("<div class='verdict {0}' id='verdict'><b>{0}</b>",
+                      report.accepted ? "accepted" : "rejected");
+  html += fmt::format(
+      " — a frame-view is bad when its {} reprojection error exceeds {} px (or its boundary "
+      "is not visible on {:.0f}% of the contour); a view may be bad on {:.0f}% of frames.",
+      QualityStatisticName(report.options.statistic), report.options.threshold_px,
+      100.0 * (1.0 - report.options.min_found_fraction),
+      100.0 * report.options.allowed_bad_fraction);
+  if (report.options.fit_rigid_motion) {
+    html +=
+        " The reprojection error of a contour point is the offset that the rigid motion fitted "
+        "(robustly) to all boundary offsets of the frame-view produces there, so boundaries found "
+        "on clutter, highlights or blurred edges at single points do not count as pose error.";
+  }
+  if (!report.reasons.empty()) {
+    html += "<ul>";
+    for (const std::string& reason : report.reasons) html += "<li>" + HtmlEscape(reason) + "</li>";
+    html += "</ul>";
+  }
+  html +=
+      "</div>\n<table><tr><th>view</th><th>bad frames</th><th>median of medians (px)</th>"
+      "<th>worst (px)</th></tr>";
+  for (const ViewQualitySummary& view : report.views) {
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{:.2f}</td><td>{:.2f}</td></tr>",
+                        HtmlEscape(view.name), view.bad_frames, view.median_of_medians_px,
+                        view.worst_px);
+  }
+  html += "</table>\n";
+  for (size_t v = 0; v < report.view_names.size(); ++v) {
+    const int rig_index = sequence.rig.Find(report.view_names[v]);
+    if (rig_index < 0) {
+      return Status::InvalidInput(
+          fmt::format("{}: no camera '{}' in the rig", sequence.dir, report.view_names[v]));
+    }
+    const RigCamera& camera = sequence.rig[rig_index];
+    html += fmt::format(
+        "<h2>View {}</h2><p>Reprojection error over time: <span style='color:#2a6'>median</span>, "
+        "<span style='color:#36c'>p90</span>, threshold dashed, bad frames shaded.</p>\n{}\n"
+        "<div class='worst'>",
+        HtmlEscape(report.view_names[v]), ViewPlot(report, v));
+    for (int frame : report.views[v].worst_frames) {
+      BCOT_ASSIGN_OR_RETURN(
+          const std::string png,
+          Thumbnail(caster, camera.camera, camera.cam_from_rig * rig_from_object[frame],
+                    sequence.image_paths[rig_index][frame], report.options));
+      const ViewFrameQuality& q = report.frames[frame][v];
+      const std::string raw =
+          report.options.fit_rigid_motion
+              ? fmt::format(" (raw boundary offsets: median {:.2f} px, p90 {:.2f} px)",
+                            q.raw_median_px, q.raw_p90_px)
+              : "";
+      html += fmt::format(
+          "<figure><img alt='frame {0}' src='data:image/png;base64,{1}'><figcaption>frame {0}: "
+          "median {2:.2f} px, p90 {3:.2f} px{4}, boundary found on {5}/{6}{7}</figcaption>"
+          "</figure>",
+          frame, png, q.median_px, q.p90_px, raw, q.found, q.points, q.bad ? " — bad" : "");
+    }
+    html += "</div>\n";
+  }
+  html +=
+      "<script>document.body.setAttribute('data-report-ready', 'yes');</script>\n</body></html>\n";
+  return html;
+}
+
+StatusOr<QualityReport> WriteQualityReport(const std::string& out_dir, const Sequence& sequence,
+                                           const std::vector<Eigen::Isometry3d>& rig_from_object,
+                                           const std::vector<std::string>& view_names,
+                                           const QualityOptions& options) {
+  BCOT_ASSIGN_OR_RETURN(QualityReport report,
+                        MeasureQuality(sequence, rig_from_object, view_names, options));
+  BCOT_ASSIGN_OR_RETURN(const std::string html, QualityHtml(report, sequence, rig_from_object));
+  BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/quality.json", QualityJson(report)));
+  BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/quality.csv", QualityCsv(report)));
+  BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/report.html", html));
+  return report;
+}
+
+StatusOr<QualityVerdict> ReadQualityVerdict(const std::string& annotation_dir) {
+  const std::string path = annotation_dir + "/quality.json";
+  BCOT_ASSIGN_OR_RETURN(const std::string text, ReadTextFile(path));
+  const nlohmann::json json = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (json.is_discarded() || !json.is_object() || !json.contains("verdict")) {
+    return Status::InvalidInput(path + ": not a bcot quality.json");
+  }
+  QualityVerdict verdict;
+  verdict.accepted = json.value("verdict", "") == "accepted";
+  if (json.contains("reasons") && json["reasons"].is_array()) {
+    for (const auto& reason : json["reasons"]) {
+      if (reason.is_string()) verdict.reasons.push_back(reason.get<std::string>());
+    }
+  }
+  verdict.worst_px = json.value("worst_px", 0.0);
+  verdict.frames = json.value("num_frames", 0);
+  return verdict;
+}
+
+}  // namespace bcot

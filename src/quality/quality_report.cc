@@ -1,0 +1,206 @@
+#include "bcot/quality/quality_report.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgcodecs.hpp>
+
+#include "bcot/optim/silhouette.h"
+#include "bcot/quality/boundary_search.h"
+#include "bcot/quality/rigid_motion_fit.h"
+#include "bcot/render/mesh.h"
+
+namespace bcot {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Camera indices of `view_names` in the rig (all cameras when empty).
+StatusOr<std::vector<int>> ViewIndices(const Rig& rig, const std::vector<std::string>& names) {
+  std::vector<int> indices;
+  if (names.empty()) {
+    for (int i = 0; i < rig.size(); ++i) indices.push_back(i);
+    return indices;
+  }
+  for (const std::string& name : names) {
+    const int index = rig.Find(name);
+    if (index < 0) return Status::InvalidConfig(fmt::format("no camera '{}' in the rig", name));
+    indices.push_back(index);
+  }
+  return indices;
+}
+
+// Measures one frame-view.
+StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& camera,
+                                       const Eigen::Isometry3d& cam_from_object,
+                                       const std::string& image_path,
+                                       const Eigen::Vector3d& object_centre,
+                                       double object_diameter_mm, const QualityOptions& options) {
+  const cv::Mat image = cv::imread(image_path, cv::IMREAD_COLOR);
+  if (image.empty()) return Status::InvalidInput(image_path + ": cannot read the image");
+  if (image.cols != camera.width || image.rows != camera.height) {
+    return Status::InvalidInput(fmt::format("{}: image is {}x{}, rig.yaml says {}x{}", image_path,
+                                            image.cols, image.rows, camera.width, camera.height));
+  }
+  ViewFrameQuality quality;
+  const Silhouette silhouette =
+      RenderSilhouette(caster, camera, cam_from_object, QualityContourOptions(options));
+  quality.points = static_cast<int>(silhouette.contour.size());
+  if (silhouette.contour.empty()) {
+    quality.median_px = quality.p90_px = quality.raw_median_px = quality.raw_p90_px = kNaN;
+    quality.bad = true;
+    return quality;
+  }
+  ColorModelOptions color;
+  color.bins_per_channel = options.bins_per_channel;
+  color.sample_margin_px = options.color_margin_px;
+  color.kind = options.color_kind;
+  const std::unique_ptr<ColorModel> model = MakeColorModel(color, object_diameter_mm);
+  const cv::Mat3b image3(image);
+  model->Update(image3, silhouette);
+
+  double min_x = camera.width, min_y = camera.height, max_x = 0, max_y = 0;
+  for (const ContourPoint& point : silhouette.contour) {
+    min_x = std::min(min_x, point.pixel.x());
+    min_y = std::min(min_y, point.pixel.y());
+    max_x = std::max(max_x, point.pixel.x());
+    max_y = std::max(max_y, point.pixel.y());
+  }
+  const int grow =
+      static_cast<int>(std::ceil(options.search_radius_px + options.step_window_px)) + 2;
+  const cv::Rect roi = cv::Rect(cv::Point(static_cast<int>(std::floor(min_x)) - grow,
+                                          static_cast<int>(std::floor(min_y)) - grow),
+                                cv::Point(static_cast<int>(std::ceil(max_x)) + grow + 1,
+                                          static_cast<int>(std::ceil(max_y)) + grow + 1)) &
+                       cv::Rect(0, 0, camera.width, camera.height);
+  std::vector<Eigen::Vector2i> pixels;
+  pixels.reserve(static_cast<size_t>(roi.area()));
+  for (int y = roi.y; y < roi.y + roi.height; ++y) {
+    for (int x = roi.x; x < roi.x + roi.width; ++x) pixels.emplace_back(x, y);
+  }
+  const std::vector<double> posteriors = model->ForegroundPosteriors(image3, pixels);
+  cv::Mat1f posterior(roi.height, roi.width);
+  for (size_t i = 0; i < posteriors.size(); ++i) {
+    posterior(static_cast<int>(i) / roi.width, static_cast<int>(i) % roi.width) =
+        static_cast<float>(posteriors[i]);
+  }
+  std::vector<cv::Mat1f> colour;
+  if (options.edge_weight > 0) {
+    cv::Mat colour_roi;
+    image(roi).convertTo(colour_roi, CV_32FC3, 1.0 / 255.0);
+    cv::split(colour_roi, colour);
+  }
+  const std::vector<double> offsets =
+      BoundaryOffsets(silhouette.contour, posterior, roi, options, colour);
+  for (double offset : offsets) quality.found += std::isfinite(offset) ? 1 : 0;
+  quality.raw_median_px = AbsPercentile(offsets, 0.5);
+  quality.raw_p90_px = AbsPercentile(offsets, 0.9);
+  if (options.fit_rigid_motion) {
+    const std::vector<double> fitted = FitRigidMotionOffsets(
+        silhouette.contour, offsets, camera, cam_from_object, object_centre, options.fit_scale_px);
+    quality.median_px = AbsPercentile(fitted, 0.5);
+    quality.p90_px = AbsPercentile(fitted, 0.9);
+  } else {
+    quality.median_px = quality.raw_median_px;
+    quality.p90_px = quality.raw_p90_px;
+  }
+  const double statistic = quality.Statistic(options.statistic);
+  quality.bad = !std::isfinite(statistic) || statistic > options.threshold_px ||
+                quality.found < options.min_found_fraction * quality.points;
+  return quality;
+}
+
+void Summarize(QualityReport* report) {
+  const QualityOptions& options = report->options;
+  const int num_frames = static_cast<int>(report->frames.size());
+  report->views.clear();
+  report->reasons.clear();
+  for (size_t v = 0; v < report->view_names.size(); ++v) {
+    ViewQualitySummary summary;
+    summary.name = report->view_names[v];
+    std::vector<double> medians;
+    std::vector<std::pair<double, int>> ranked;
+    int unverifiable = 0;
+    for (int f = 0; f < num_frames; ++f) {
+      const ViewFrameQuality& q = report->frames[f][v];
+      if (q.bad) ++summary.bad_frames;
+      medians.push_back(q.median_px);
+      const double statistic = q.Statistic(options.statistic);
+      if (!std::isfinite(statistic) || q.found < options.min_found_fraction * q.points) {
+        ++unverifiable;
+        ranked.push_back({std::numeric_limits<double>::infinity(), f});
+      } else {
+        ranked.push_back({statistic, f});
+        summary.worst_px = std::max(summary.worst_px, statistic);
+      }
+    }
+    std::stable_sort(ranked.begin(), ranked.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (int i = 0; i < std::min<int>(options.worst_frames, static_cast<int>(ranked.size())); ++i) {
+      summary.worst_frames.push_back(ranked[i].second);
+    }
+    summary.median_of_medians_px = AbsPercentile(medians, 0.5);
+    summary.bad_fraction = num_frames > 0 ? double(summary.bad_frames) / num_frames : 0.0;
+    if (summary.bad_fraction > options.allowed_bad_fraction) {
+      std::string reason =
+          fmt::format("view {}: {} of {} frames ({:.0f}%) bad, {:.0f}% allowed", summary.name,
+                      summary.bad_frames, num_frames, 100.0 * summary.bad_fraction,
+                      100.0 * options.allowed_bad_fraction);
+      if (summary.bad_frames > unverifiable) {
+        reason +=
+            fmt::format("; worst {} {:.2f} px > {} px", QualityStatisticName(options.statistic),
+                        summary.worst_px, options.threshold_px);
+      }
+      if (unverifiable > 0) {
+        reason += fmt::format("; {} frames without a visible boundary", unverifiable);
+      }
+      report->reasons.push_back(reason);
+    }
+    report->views.push_back(summary);
+  }
+  report->accepted = report->reasons.empty();
+}
+
+}  // namespace
+
+StatusOr<QualityReport> MeasureQuality(const Sequence& sequence,
+                                       const std::vector<Eigen::Isometry3d>& rig_from_object,
+                                       const std::vector<std::string>& view_names,
+                                       const QualityOptions& options) {
+  BCOT_RETURN_IF_ERROR(options.Validate());
+  if (static_cast<int>(rig_from_object.size()) != sequence.num_frames) {
+    return Status::InvalidInput(fmt::format("{}: {} poses for {} frames", sequence.dir,
+                                            rig_from_object.size(), sequence.num_frames));
+  }
+  BCOT_ASSIGN_OR_RETURN(const std::vector<int> indices, ViewIndices(sequence.rig, view_names));
+  BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
+                        Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
+  const RayCaster caster(mesh);
+  QualityReport report;
+  report.sequence_dir = sequence.dir;
+  report.options = options;
+  for (int index : indices) report.view_names.push_back(sequence.rig[index].camera.name);
+  report.frames.assign(sequence.num_frames, std::vector<ViewFrameQuality>(indices.size()));
+  std::vector<Status> errors(sequence.num_frames * indices.size());
+  tbb::parallel_for(0, static_cast<int>(errors.size()), [&](int job) {
+    const int frame = job / static_cast<int>(indices.size());
+    const int view = job % static_cast<int>(indices.size());
+    const RigCamera& camera = sequence.rig[indices[view]];
+    StatusOr<ViewFrameQuality> quality = MeasureView(
+        caster, camera.camera, camera.cam_from_rig * rig_from_object[frame],
+        sequence.image_paths[indices[view]][frame], mesh.bbox_center(), mesh.diameter(), options);
+    if (quality.ok()) {
+      report.frames[frame][view] = *quality;
+    } else {
+      errors[job] = quality.status();
+    }
+  });
+  for (const Status& error : errors) BCOT_RETURN_IF_ERROR(error);
+  Summarize(&report);
+  return report;
+}
+
+}  // namespace bcot

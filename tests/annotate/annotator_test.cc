@@ -1,0 +1,175 @@
+#include "bcot/annotate/annotator.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "bcot/core/file_util.h"
+#include "bcot/core/pose_io.h"
+#include "bcot/core/sequence.h"
+#include "bcot/synth/synth_options.h"
+#include "bcot/synth/synthesizer.h"
+#include "test_util.h"
+
+namespace bcot {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A small binocular 90° sequence from the demo config: glossy object, cluttered and plain
+// backgrounds, distractors, noise, blur; 480×384, 4 frames.
+class AnnotatorTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new test::TempDir();
+    const StatusOr<SynthOptions> options =
+        ReadSynthOptions(test::SourcePath("configs/synth/demo.yaml"),
+                         {"cameras.width=480", "cameras.height=384", "motion.num_frames=4"});
+    BCOT_CHECK(options.ok());
+    BCOT_CHECK(Synthesize(*options, SequenceDir()).ok());
+  }
+  static void TearDownTestSuite() { delete dir_; }
+  static std::string SequenceDir() { return dir_->File("seq"); }
+
+  static test::TempDir* dir_;
+};
+
+test::TempDir* AnnotatorTest::dir_ = nullptr;
+
+TEST_F(AnnotatorTest, AnnotatesASyntheticSequenceCloseToGroundTruth) {
+  test::TempDir out;
+  const std::string out_dir = out.File("ann");
+  int progress_calls = 0;
+  const Status status =
+      AnnotateSequenceDir(SequenceDir(), out_dir, AnnotateOptions(), [&](int done, int total) {
+        EXPECT_EQ(total, 4);
+        EXPECT_EQ(done, ++progress_calls);
+      });
+  ASSERT_TRUE(status.ok()) << status.message();
+  EXPECT_EQ(progress_calls, 4);
+  for (const char* file : {"rig_from_object.txt", "cam0/pose.txt", "cam1/pose.txt", "frames.csv",
+                           "config.resolved.yaml", "DONE"}) {
+    EXPECT_TRUE(std::filesystem::exists(out_dir + "/" + file)) << file;
+  }
+  const StatusOr<std::vector<Eigen::Isometry3d>> truth =
+      ReadPoseFile(SequenceDir() + "/gt/rig_from_object.txt");
+  const StatusOr<std::vector<Eigen::Isometry3d>> annotated =
+      ReadPoseFile(out_dir + "/rig_from_object.txt");
+  ASSERT_TRUE(truth.ok() && annotated.ok());
+  ASSERT_EQ(annotated->size(), 4u);
+  for (size_t f = 0; f < truth->size(); ++f) {
+    // From a 5° / 5 mm initial pose at 480×384 (object ~160 px).
+    std::printf("frame %zu: %.4f deg %.4f mm\n", f,
+                test::RotationErrorDeg((*annotated)[f], (*truth)[f]),
+                test::TranslationErrorMm((*annotated)[f], (*truth)[f]));
+    EXPECT_THAT((*annotated)[f], test::PoseNear((*truth)[f], 0.5, 1.0)) << "frame " << f;
+  }
+  // cam_from_object = cam_from_rig · rig_from_object for every camera.
+  const StatusOr<std::vector<Eigen::Isometry3d>> cam1 = ReadPoseFile(out_dir + "/cam1/pose.txt");
+  const StatusOr<std::vector<Eigen::Isometry3d>> cam1_truth =
+      ReadPoseFile(SequenceDir() + "/gt/cam1/pose.txt");
+  ASSERT_TRUE(cam1.ok() && cam1_truth.ok());
+  EXPECT_THAT((*cam1)[3], test::PoseNear((*cam1_truth)[3], 0.5, 1.0));
+  const StatusOr<std::string> done = ReadTextFile(out_dir + "/DONE");
+  ASSERT_TRUE(done.ok());
+  EXPECT_THAT(*done, HasSubstr("failed_frames: 0"));
+  const StatusOr<std::string> config = ReadTextFile(out_dir + "/config.resolved.yaml");
+  ASSERT_TRUE(config.ok());
+  EXPECT_THAT(*config, HasSubstr("input_hash:"));
+  EXPECT_THAT(*config, HasSubstr("rounds: 5"));
+}
+
+TEST_F(AnnotatorTest, MonocularSelectionUsesOneCamera) {
+  StatusOr<Sequence> sequence = LoadSequence(SequenceDir());
+  ASSERT_TRUE(sequence.ok());
+  AnnotateOptions options;
+  options.tracker.frame.rounds = 1;
+  options.views.cameras = {"cam1"};
+  const StatusOr<SequenceAnnotation> annotation = AnnotateSequence(*sequence, options);
+  ASSERT_TRUE(annotation.ok()) << annotation.status().message();
+  ASSERT_EQ(annotation->view_names.size(), 1u);
+  EXPECT_EQ(annotation->view_names[0], "cam1");
+  EXPECT_EQ(annotation->frames[0].summary.views.size(), 1u);
+  options.views.cameras = {"cam7"};
+  const StatusOr<SequenceAnnotation> missing = AnnotateSequence(*sequence, options);
+  ASSERT_EQ(missing.status().code(), StatusCode::kInvalidConfig);
+  EXPECT_THAT(missing.status().message(), HasSubstr("no camera 'cam7' in the rig"));
+}
+
+TEST_F(AnnotatorTest, InputHashChangesWithTheInputs) {
+  test::TempDir copy;
+  std::filesystem::copy(SequenceDir(), copy.File("seq"), std::filesystem::copy_options::recursive);
+  StatusOr<Sequence> sequence = LoadSequence(copy.File("seq"));
+  ASSERT_TRUE(sequence.ok());
+  const StatusOr<std::string> before = SequenceInputHash(*sequence);
+  ASSERT_TRUE(before.ok());
+  EXPECT_EQ(*SequenceInputHash(*sequence), *before);
+  test::WriteText(copy.File("seq/init_pose.txt"),
+                  FormatPoseLine(Eigen::Isometry3d(Eigen::Translation3d(1, 2, 300))) + "\n");
+  EXPECT_NE(*SequenceInputHash(*sequence), *before);
+}
+
+TEST_F(AnnotatorTest, BadInputsAreErrorsNamingTheFile) {
+  test::TempDir copy;
+  const std::string seq = copy.File("seq");
+  std::filesystem::copy(SequenceDir(), seq, std::filesystem::copy_options::recursive);
+  // A mesh that does not load.
+  test::WriteText(seq + "/model/bunny.obj", "this is not a mesh\n");
+  const Status bad_mesh = AnnotateSequenceDir(seq, copy.File("out"), AnnotateOptions());
+  EXPECT_FALSE(bad_mesh.ok());
+  EXPECT_THAT(bad_mesh.message(), HasSubstr("bunny.obj"));
+  EXPECT_FALSE(std::filesystem::exists(copy.File("out/DONE")));
+  // A corrupt image.
+  std::filesystem::copy_file(SequenceDir() + "/model/bunny.obj", seq + "/model/bunny.obj",
+                             std::filesystem::copy_options::overwrite_existing);
+  test::WriteText(seq + "/cam1/000002.png", "not a png");
+  const Status bad_image = AnnotateSequenceDir(seq, copy.File("out"), AnnotateOptions());
+  EXPECT_EQ(bad_image.code(), StatusCode::kInvalidInput);
+  EXPECT_THAT(bad_image.message(), HasSubstr("cam1/000002.png"));
+  EXPECT_FALSE(std::filesystem::exists(copy.File("out/DONE")));
+}
+
+// The temporal window refines the per-frame poses: both are in the annotation, the window's
+// change per frame is in frames.csv and its options in config.resolved.yaml; off, the final
+// poses are the per-frame ones.
+TEST_F(AnnotatorTest, WindowRefinesThePerFramePosesAndIsRecorded) {
+  const StatusOr<Sequence> sequence = LoadSequence(SequenceDir());
+  ASSERT_TRUE(sequence.ok());
+  AnnotateOptions options;
+  options.tracker.frame.rounds = 2;
+  options.window.enabled = false;
+  const StatusOr<SequenceAnnotation> off = AnnotateSequence(*sequence, options);
+  ASSERT_TRUE(off.ok()) << off.status().message();
+  options.window.enabled = true;
+  options.window.size = 0;  // whole sequence
+  const StatusOr<SequenceAnnotation> on = AnnotateSequence(*sequence, options);
+  ASSERT_TRUE(on.ok()) << on.status().message();
+  ASSERT_EQ(on->rig_from_object.size(), 4u);
+  double moved_mm = 0.0;
+  for (size_t f = 0; f < 4; ++f) {
+    EXPECT_TRUE(off->rig_from_object[f].isApprox(off->per_frame_rig_from_object[f]));
+    EXPECT_EQ(off->frames[f].window_translation_mm, 0.0);
+    // The per-frame solves do not depend on the window.
+    EXPECT_TRUE(on->per_frame_rig_from_object[f].isApprox(off->rig_from_object[f], 1e-9));
+    EXPECT_NEAR(
+        on->frames[f].window_translation_mm,
+        (on->rig_from_object[f].translation() - on->per_frame_rig_from_object[f].translation())
+            .norm(),
+        1e-9);
+    moved_mm += on->frames[f].window_translation_mm;
+  }
+  EXPECT_GT(moved_mm, 0.0);
+  test::TempDir out;
+  ASSERT_TRUE(WriteAnnotation(out.path(), *sequence, options, "0", *on).ok());
+  const StatusOr<std::string> csv = ReadTextFile(out.File("frames.csv"));
+  ASSERT_TRUE(csv.ok());
+  EXPECT_THAT(*csv, HasSubstr(",milliseconds,window_rotation_deg,window_translation_mm\n"));
+  const StatusOr<std::string> config = ReadTextFile(out.File("config.resolved.yaml"));
+  ASSERT_TRUE(config.ok());
+  EXPECT_THAT(*config, HasSubstr("window:\n  enabled: true\n  size: 0\n"));
+}
+
+}  // namespace
+}  // namespace bcot
