@@ -1,8 +1,10 @@
 #include "bcot/core/rig_io.h"
 
-#include <map>
-
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
 
 #include "bcot/core/file_util.h"
 #include "bcot/core/pose_io.h"
@@ -10,6 +12,68 @@
 
 namespace bcot {
 namespace {
+
+// Plausibility bounds of rig.yaml (beyond them a value is a typo or a unit slip, and would make
+// the projection or the ray caster meaningless).
+constexpr double kMinFocalPerImageSize = 0.01;  // f ≥ 1 % of the larger image side
+constexpr double kMaxFocalPerImageSize = 1000;  // f ≤ 1000 × the larger image side
+constexpr double kMaxCameraDistanceMm = 1e7;    // 10 km
+constexpr double kMinRadialFactor = 0.25;       // r_distorted / r over the image
+constexpr double kMaxRadialFactor = 4.0;
+
+// Focal lengths within [kMin, kMax]FocalPerImageSize × max(width, height); the principal point
+// at most one image size outside the image.
+Status CheckIntrinsicsPlausible(const Camera& camera, const YamlMap& map) {
+  const double size = std::max(camera.width, camera.height);
+  const double min_f = kMinFocalPerImageSize * size, max_f = kMaxFocalPerImageSize * size;
+  for (const double f : {camera.fx, camera.fy}) {
+    if (!(f >= min_f && f <= max_f)) {
+      return map.Error(
+          "K", fmt::format("fx = {}, fy = {}: outside [{:g}, {:g}] px, the plausible "
+                           "focal lengths of a {}x{} image",
+                           camera.fx, camera.fy, min_f, max_f, camera.width, camera.height));
+    }
+  }
+  if (!(camera.cx >= -camera.width && camera.cx <= 2.0 * camera.width &&
+        camera.cy >= -camera.height && camera.cy <= 2.0 * camera.height)) {
+    return map.Error("K", fmt::format("principal point ({}, {}) lies more than one image size "
+                                      "outside the {}x{} image",
+                                      camera.cx, camera.cy, camera.width, camera.height));
+  }
+  return Status::Ok();
+}
+
+// The radial distortion r ↦ r·(1 + k1 r² + k2 r⁴ + k3 r⁶) must be increasing, and scale r by a
+// factor within [kMinRadialFactor, kMaxRadialFactor], for every r up to the normalised radius
+// of the image corner farthest from the principal point: otherwise two rays map to one pixel
+// (the model folds over inside the image) and the inverse the renderer needs does not exist.
+Status CheckDistortionPlausible(const Camera& camera, const YamlMap& map) {
+  const double k1 = camera.distortion[0], k2 = camera.distortion[1], k3 = camera.distortion[4];
+  double corner_radius = 0.0;
+  for (const double u : {0.0, camera.width - 1.0}) {
+    for (const double v : {0.0, camera.height - 1.0}) {
+      corner_radius = std::max(
+          corner_radius, std::hypot((u - camera.cx) / camera.fx, (v - camera.cy) / camera.fy));
+    }
+  }
+  constexpr int kSteps = 200;
+  for (int i = 1; i <= kSteps; ++i) {
+    const double r = corner_radius * i / kSteps, r2 = r * r;
+    const double factor = 1.0 + k1 * r2 + k2 * r2 * r2 + k3 * r2 * r2 * r2;
+    const double slope = 1.0 + 3.0 * k1 * r2 + 5.0 * k2 * r2 * r2 + 7.0 * k3 * r2 * r2 * r2;
+    if (!(slope > 0.0) || !(factor >= kMinRadialFactor && factor <= kMaxRadialFactor)) {
+      return map.Error(
+          "distortion",
+          fmt::format("[k1, k2, p1, p2, k3] = [{}, {}, {}, {}, {}]: at normalised radius {:.3g} "
+                      "(within the image) the radial model {} (factor {:.3g}); expected an "
+                      "increasing model scaling radii by {} to {}",
+                      k1, k2, camera.distortion[2], camera.distortion[3], k3, r,
+                      slope > 0.0 ? "is out of range" : "folds over", factor, kMinRadialFactor,
+                      kMaxRadialFactor));
+    }
+  }
+  return Status::Ok();
+}
 
 StatusOr<RigCamera> ParseCamera(const YAML::Node& node, const std::string& source_name, int index) {
   YamlMap map(node, source_name, fmt::format("cameras[{}]", index));
@@ -50,10 +114,13 @@ StatusOr<RigCamera> ParseCamera(const YAML::Node& node, const std::string& sourc
   camera.cx = k[2];
   camera.cy = k[3];
 
+  BCOT_RETURN_IF_ERROR(CheckIntrinsicsPlausible(camera, map));
+
   if (map.Has("distortion")) {
     std::vector<double> distortion;
     BCOT_RETURN_IF_ERROR(map.GetFixedArray("distortion", 5, &distortion));
     for (int i = 0; i < 5; ++i) camera.distortion[i] = distortion[i];
+    BCOT_RETURN_IF_ERROR(CheckDistortionPlausible(camera, map));
   } else {
     map.Node("distortion");  // known key, absent: zeros
   }
@@ -71,6 +138,12 @@ StatusOr<RigCamera> ParseCamera(const YAML::Node& node, const std::string& sourc
   if (!OrthonormalizeReadRotation(&rotation, &why)) return map.Error("cam_from_rig", why);
   rig_camera.cam_from_rig.linear() = rotation;
   rig_camera.cam_from_rig.translation() = Eigen::Vector3d(m[3], m[7], m[11]);
+  if (!(rig_camera.cam_from_rig.translation().norm() <= kMaxCameraDistanceMm)) {
+    return map.Error("cam_from_rig",
+                     fmt::format("translation ({}, {}, {}) mm is more than {:g} km from the rig "
+                                 "origin; translations are in mm",
+                                 m[3], m[7], m[11], kMaxCameraDistanceMm / 1e6));
+  }
 
   BCOT_RETURN_IF_ERROR(map.CheckNoUnknownKeys());
   return rig_camera;

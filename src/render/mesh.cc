@@ -137,8 +137,9 @@ StatusOr<Mesh> Mesh::Load(const std::string& path, double unit_to_mm) {
   CollectNode(*scene, *scene->mRootNode, aiMatrix4x4(), unit_to_mm, &collected);
 
   if (collected.non_finite) {
-    return Status::InvalidInput(
-        fmt::format("{}: mesh has non-finite vertex coordinates (NaN or inf)", path));
+    return Status::InvalidInput(fmt::format(
+        "{}: mesh has non-finite vertex coordinates (NaN or inf) after scaling by unit_to_mm = {}",
+        path, unit_to_mm));
   }
   if (collected.polygon_primitives > 0) {
     return Status::InvalidInput(
@@ -158,6 +159,15 @@ StatusOr<Mesh> Mesh::Load(const std::string& path, double unit_to_mm) {
   if (!(mesh.diameter() > 0.0)) {
     return Status::InvalidInput(
         fmt::format("{}: zero-size bounding box (all vertices coincide)", path));
+  }
+  // An object this tool annotates is between a grain and a room in size; anything outside
+  // comes from a wrong unit_to_mm or a stray vertex, and would make rays Embree cannot take.
+  constexpr double kMinDiameterMm = 0.01, kMaxDiameterMm = 1e5;
+  if (mesh.diameter() < kMinDiameterMm || mesh.diameter() > kMaxDiameterMm) {
+    return Status::InvalidInput(fmt::format(
+        "{}: the mesh's bounding box is {:g} mm across (longest side) with unit_to_mm = {}; "
+        "expected {} mm to {:g} m: check unit_to_mm in object.yaml or stray vertices",
+        path, mesh.diameter(), unit_to_mm, kMinDiameterMm, kMaxDiameterMm / 1000));
   }
   if (!(TotalArea(mesh.vertices_, mesh.triangles_) > 0.0)) {
     return Status::InvalidInput(fmt::format(

@@ -166,7 +166,14 @@ void RowDirectionsInObject(const Camera& camera, const RayFrame& frame, const Sa
 
 namespace {
 
-RTCRay MakeRay(const RayFrame& frame, const Eigen::Vector3d& direction_in_object) {
+// The ray from the camera centre along `direction_in_object`; when Embree could not take it
+// (IsCastableRay), *castable is false and the ray is a harmless stand-in that must not be cast.
+RTCRay MakeRay(const RayFrame& frame, const Eigen::Vector3d& direction_in_object, bool* castable) {
+  *castable =
+      IsCastableRay(frame.cam_centre_in_object.cast<float>(), direction_in_object.cast<float>());
+  if (!*castable) {
+    return MakeRay(RayFrame(Eigen::Isometry3d::Identity()), Eigen::Vector3d::UnitZ(), castable);
+  }
   RTCRay ray;
   ray.org_x = static_cast<float>(frame.cam_centre_in_object.x());
   ray.org_y = static_cast<float>(frame.cam_centre_in_object.y());
@@ -188,7 +195,9 @@ RTCRay MakeRay(const RayFrame& frame, const Eigen::Vector3d& direction_in_object
 bool Occluded(RTCScene scene, const RayFrame& frame, const Eigen::Vector3d& direction_in_cam) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay ray = MakeRay(frame, frame.DirectionInObject(direction_in_cam));
+  bool castable = false;
+  RTCRay ray = MakeRay(frame, frame.DirectionInObject(direction_in_cam), &castable);
+  if (!castable) return false;
   rtcOccluded1(scene, &context, &ray);
   return ray.tfar < 0.0f;
 }
@@ -199,12 +208,15 @@ void Occluded8(RTCScene scene, const RayFrame& frame, const Eigen::Vector3d* dir
   rtcInitIntersectContext(&context);
   RTCRay8 packet;
   alignas(32) int valid[kPacketSize];  // Embree requires the valid mask 32-byte aligned
+  bool cast[kPacketSize];
   for (int lane = 0; lane < kPacketSize; ++lane) {
-    valid[lane] = active[lane] ? -1 : 0;
     // Inactive lanes still get a well-defined ray: Embree may load the whole packet.
-    const RTCRay ray =
-        MakeRay(frame, active[lane] ? frame.DirectionInObject(directions_in_cam[lane])
-                                    : Eigen::Vector3d(0.0, 0.0, 1.0));
+    const RTCRay ray = MakeRay(frame,
+                               active[lane] ? frame.DirectionInObject(directions_in_cam[lane])
+                                            : Eigen::Vector3d(0.0, 0.0, 1.0),
+                               &cast[lane]);
+    cast[lane] = cast[lane] && active[lane];
+    valid[lane] = cast[lane] ? -1 : 0;
     packet.org_x[lane] = ray.org_x;
     packet.org_y[lane] = ray.org_y;
     packet.org_z[lane] = ray.org_z;
@@ -220,7 +232,7 @@ void Occluded8(RTCScene scene, const RayFrame& frame, const Eigen::Vector3d* dir
   }
   rtcOccluded8(valid, scene, &context, &packet);
   for (int lane = 0; lane < kPacketSize; ++lane) {
-    if (active[lane]) hits[lane] = packet.tfar[lane] < 0.0f;
+    if (active[lane]) hits[lane] = cast[lane] && packet.tfar[lane] < 0.0f;
   }
 }
 
@@ -230,7 +242,9 @@ std::optional<SingleHit> Intersect(RTCScene scene, const RayFrame& frame,
   rtcInitIntersectContext(&context);
   const Eigen::Vector3d direction_in_object = frame.DirectionInObject(direction_in_cam);
   RTCRayHit ray_hit;
-  ray_hit.ray = MakeRay(frame, direction_in_object);
+  bool castable = false;
+  ray_hit.ray = MakeRay(frame, direction_in_object, &castable);
+  if (!castable) return std::nullopt;
   ray_hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   ray_hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene, &context, &ray_hit);

@@ -48,6 +48,17 @@ struct RayFrame {
   Eigen::Vector3d cam_centre_in_object;
 };
 
+// Embree requires every ray component to be finite and within ±1.844e18 (FLT_LARGE) and asserts
+// (aborting the process) otherwise. Such rays come only from absurd inputs (an object 1e20 mm
+// away, a focal length of 1e-300 px); they are not cast and count as a miss. The bound below
+// keeps a wide margin to FLT_LARGE.
+inline bool IsCastableRay(const Eigen::Vector3f& origin, const Eigen::Vector3f& direction) {
+  constexpr float kMaxComponent = 1e15f;
+  return origin.allFinite() && direction.allFinite() &&
+         origin.cwiseAbs().maxCoeff() < kMaxComponent &&
+         direction.cwiseAbs().maxCoeff() < kMaxComponent && direction.squaredNorm() > 0.0f;
+}
+
 // A regular grid of image positions: sample (c, r) sits at (u0 + c·step, v0 + r·step).
 struct SampleGrid {
   double u0 = 0.0;
@@ -130,15 +141,17 @@ void TraceGrid(RTCScene scene, const RayFrame& frame, const Camera& camera, cons
             for (int lane = 0; lane < 8; ++lane) {
               const int col = col0 + (lane & 3);
               const int row = row0 + (lane >> 2);
-              const bool inside = col < grid.cols && row < grid.rows;
+              const bool inside = col < grid.cols && row < grid.rows &&
+                                  IsCastableRay(origin, directions[lane >> 2][col]);
               valid[lane] = inside ? -1 : 0;
               // Invalid lanes still get a well-defined ray: Embree may load the whole packet.
               const Eigen::Vector3f direction =
                   inside ? directions[lane >> 2][col] : Eigen::Vector3f(0.0f, 0.0f, 1.0f);
+              const Eigen::Vector3f lane_origin = inside ? origin : Eigen::Vector3f::Zero();
               RTCRay8& ray = packet.ray;
-              ray.org_x[lane] = origin.x();
-              ray.org_y[lane] = origin.y();
-              ray.org_z[lane] = origin.z();
+              ray.org_x[lane] = lane_origin.x();
+              ray.org_y[lane] = lane_origin.y();
+              ray.org_z[lane] = lane_origin.z();
               ray.tnear[lane] = 0.0f;
               ray.dir_x[lane] = direction.x();
               ray.dir_y[lane] = direction.y();

@@ -229,7 +229,21 @@ INSTANTIATE_TEST_SUITE_P(
                    "    cam_from_rig: [0, 0, 1, -100,  0, 1, 0, 0,  -1, 0, 0, 50,  0, 0, 0, 1]\n"
                    "extra: 1",
                    "rig.yaml:11: extra: ", "unknown key"},
-        BadRigCase{4, "    K: [1000, 1001, 640.5, 511.5", "rig.yaml:", "YAML syntax error"}));
+        BadRigCase{4, "    K: [1000, 1001, 640.5, 511.5", "rig.yaml:", "YAML syntax error"},
+        // Finite but absurd values (they used to reach the ray caster and abort in Embree).
+        BadRigCase{4, "    K: [1000, 1e-300, 640.5, 511.5]",
+                   "rig.yaml:4: cameras[0].K: ", "plausible focal lengths of a 1280x1024 image"},
+        BadRigCase{4, "    K: [1e300, 1000, 640.5, 511.5]",
+                   "rig.yaml:4: cameras[0].K: ", "outside [12.8, 1.28e+06] px"},
+        BadRigCase{4, "    K: [1000, 1000, 1e5, 511.5]",
+                   "rig.yaml:4: cameras[0].K: ", "more than one image size outside"},
+        BadRigCase{5, "    distortion: [1e6, 0, 0, 0, 0]",
+                   "rig.yaml:5: cameras[0].distortion: ", "is out of range"},
+        BadRigCase{5, "    distortion: [-1.5, 0, 0, 0, 0]",
+                   "rig.yaml:5: cameras[0].distortion: ", "folds over"},
+        BadRigCase{
+            6, "    cam_from_rig: [1, 0, 0, 1e39,  0, 1, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1]",
+            "rig.yaml:6: cameras[0].cam_from_rig: ", "more than 10 km from the rig origin"}));
 
 TEST(RigIoTest, CamerasMustBeANonEmptySequence) {
   for (const std::string& text :

@@ -140,9 +140,9 @@ Mesh MakeTorus(double major, double minor, int segments_u, int segments_v) {
   std::vector<Eigen::Vector3f> vertices;
   std::vector<Eigen::Vector3i> triangles;
   for (int i = 0; i < segments_u; ++i) {
-    const double u = 2.0 * M_PI * i / segments_u;
+    const double u = 2.0 * kPi * i / segments_u;
     for (int j = 0; j < segments_v; ++j) {
-      const double v = 2.0 * M_PI * j / segments_v;
+      const double v = 2.0 * kPi * j / segments_v;
       vertices.emplace_back((major + minor * std::cos(v)) * std::cos(u),
                             (major + minor * std::cos(v)) * std::sin(u), minor * std::sin(v));
     }
@@ -284,7 +284,7 @@ TEST_F(SphereTest, OnAxisDepthNormalAndArea) {
 
   // Area: pixel count vs π r² (pixel quantisation of a 60 px circle: well below 1 %).
   const double area = CountNonZero(view.mask);
-  EXPECT_NEAR(area / (M_PI * r * r), 1.0, 0.01);
+  EXPECT_NEAR(area / (kPi * r * r), 1.0, 0.01);
 
   // Silhouette radius along the image axes: the extreme mask pixels.
   int min_col = view.mask.cols, max_col = -1;
@@ -302,6 +302,22 @@ TEST_F(SphereTest, OnAxisDepthNormalAndArea) {
   EXPECT_EQ(view.depth(0, 0), 0.0f);
   EXPECT_EQ(view.triangle_id(0, 0), -1);
   EXPECT_EQ(view.normal_in_cam(0, 0), cv::Vec3f(0, 0, 0));
+}
+
+// Poses and cameras far beyond any real scene make rays Embree cannot take (it asserts and aborts
+// on components beyond ~1.8e18). They are not cast: the object is simply not seen.
+TEST_F(SphereTest, AbsurdPosesAndCamerasRenderNothingInsteadOfAborting) {
+  const Camera camera = TestCamera();
+  for (const double distance : {1e17, 1e20, 1e39, 1e308}) {
+    const RenderedView view = caster_.Render(camera, CamFromObject({0, 0, distance}));
+    EXPECT_EQ(cv::countNonZero(view.mask), 0) << distance;
+    EXPECT_TRUE(caster_.ExtractContour(camera, CamFromObject({distance, 0, kDistance})).empty())
+        << distance;
+  }
+  Camera tiny_focal = camera;
+  tiny_focal.fy = 1e-300;
+  const RenderedView view = caster_.Render(tiny_focal, CamFromObject({0, 0, kDistance}));
+  EXPECT_LT(cv::countNonZero(view.mask), camera.width * camera.height);
 }
 
 TEST_F(SphereTest, SupersampledAreaAndCoverageMatchOneSample) {
@@ -340,7 +356,7 @@ TEST_F(SphereTest, SupersampledAreaAndCoverageMatchOneSample) {
   const double area4 = CountNonZero(view4.mask) / 16.0;
   EXPECT_NEAR(area4 / area1, 1.0, 0.01);
   const double r = SilhouetteRadiusPx(kRadius);
-  EXPECT_NEAR(area4 / (M_PI * r * r), 1.0, 0.005);
+  EXPECT_NEAR(area4 / (kPi * r * r), 1.0, 0.005);
 
   // Sub-sample (i, j) of pixel (u, v) sits at (u − ½ + (i + ½)/4, v − ½ + (j + ½)/4): check
   // the documented convention against single rays along the boundary.
@@ -635,8 +651,8 @@ TEST_F(SphereTest, OnAxisContourOnAnalyticSilhouette) {
   const double r_outer = SilhouetteRadiusPx(kRadius);
   const double r_inner = SilhouetteRadiusPx(inscribed_radius_);
   // One closed contour, sampled about every pixel along the traced polyline.
-  EXPECT_GT(contour.size(), 2 * M_PI * r_outer * 0.9);
-  EXPECT_LT(contour.size(), 2 * M_PI * r_outer * 1.5);
+  EXPECT_GT(contour.size(), 2 * kPi * r_outer * 0.9);
+  EXPECT_LT(contour.size(), 2 * kPi * r_outer * 1.5);
   double max_error = 0.0;
   double max_reprojection = 0.0;
   for (const ContourPoint& point : contour) {
@@ -858,8 +874,8 @@ TEST(ContourTest, SparserSamplingAndCoarserGrid) {
   options.precision_px = 1.0 / 128.0;
   const std::vector<ContourPoint> contour = caster.ExtractContour(camera, cam_from_object, options);
   const double r = 600.0 * 50.0 / std::sqrt(500.0 * 500.0 - 50.0 * 50.0);
-  EXPECT_GT(contour.size(), 2 * M_PI * r / 3.0 * 0.9);
-  EXPECT_LT(contour.size(), 2 * M_PI * r / 3.0 * 1.5);
+  EXPECT_GT(contour.size(), 2 * kPi * r / 3.0 * 0.9);
+  EXPECT_LT(contour.size(), 2 * kPi * r / 3.0 * 1.5);
   for (const ContourPoint& point : contour) {
     EXPECT_NEAR((point.pixel - Eigen::Vector2d(320, 256)).norm(), r, 0.05);
     EXPECT_LT(ReprojectionErrorPx(camera, cam_from_object, point),
