@@ -7,7 +7,11 @@
 #include <random>
 #include <string>
 
+#include "bcot/core/se3.h"
+
 namespace bcot::test {
+
+using ::bcot::kPi;
 
 // A fresh directory under the system temp dir, removed (recursively) on destruction.
 class TempDir {
@@ -35,8 +39,6 @@ void WriteText(const std::string& path, const std::string& content);
 
 // Runs a shell command, returns its exit code; stdout+stderr go to `output` when non-null.
 int RunCommand(const std::string& command, std::string* output = nullptr);
-
-inline constexpr double kPi = 3.14159265358979323846;
 
 // A unit vector in a uniformly random direction (normalised standard normal draws).
 inline Eigen::Vector3d RandomUnitVector(std::mt19937& rng) {

@@ -43,26 +43,24 @@ int RunAnnotate(const AnnotateFlags& flags) {
       if (done == total) std::fprintf(stderr, "\n");
     };
   }
-  const Status status = AnnotateSequenceDir(flags.sequence_dir, flags.out_dir, *options, progress);
-  if (!status.ok()) {
+  const StatusOr<AnnotationOutcome> outcome =
+      AnnotateSequenceDir(flags.sequence_dir, flags.out_dir, *options, progress);
+  if (!outcome.ok()) {
     if (!flags.quiet) std::fprintf(stderr, "\n");
-    PrintError("annotate", status.message());
-    return status.ExitCode();
+    PrintError("annotate", outcome.status().message());
+    return outcome.status().ExitCode();
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr, "bcot annotate: wrote %s in %.1f s\n", flags.out_dir.c_str(), seconds);
-  const StatusOr<QualityVerdict> verdict = ReadQualityVerdict(flags.out_dir);
-  if (verdict.ok()) {
-    // A rejection says why (the first reason: view, bad frames, worst error or an invisible
-    // boundary); an acceptance its worst error.
-    const std::string detail = !verdict->accepted && !verdict->reasons.empty()
-                                   ? ": " + verdict->reasons.front()
-                                   : fmt::format(" (worst {:.2f} px)", verdict->worst_px);
-    std::fprintf(stderr, "bcot annotate: quality %s%s; see %s/report.html\n",
-                 verdict->accepted ? "accepted" : "rejected", detail.c_str(),
-                 flags.out_dir.c_str());
-  }
+  // A rejection says why (the first reason: view, bad frames, worst error or an invisible
+  // boundary); an acceptance its worst error.
+  const QualityVerdict& verdict = outcome->verdict;
+  const std::string detail = !verdict.accepted && !verdict.reasons.empty()
+                                 ? ": " + verdict.reasons.front()
+                                 : fmt::format(" (worst {:.2f} px)", verdict.worst_px);
+  std::fprintf(stderr, "bcot annotate: quality %s%s; see %s/report.html\n",
+               verdict.accepted ? "accepted" : "rejected", detail.c_str(), flags.out_dir.c_str());
   return 0;
 }
 

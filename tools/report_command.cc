@@ -22,7 +22,8 @@ struct ReportFlags {
 };
 
 int RunReport(const ReportFlags& flags) {
-  if (std::filesystem::exists(flags.annotation_dir + "/config.resolved.yaml")) {
+  if (std::filesystem::exists(flags.annotation_dir + "/config.resolved.yaml") ||
+      std::filesystem::exists(flags.annotation_dir + "/DONE")) {
     const StatusOr<QualityReport> report =
         RegenerateQualityReport(flags.annotation_dir, flags.sequence_dir, flags.overrides);
     if (!report.ok()) {

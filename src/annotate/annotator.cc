@@ -10,12 +10,13 @@
 #include <string>
 #include <system_error>
 
+#include "bcot/annotate/done_file.h"
 #include "bcot/core/file_util.h"
+#include "bcot/core/image_io.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/se3.h"
 #include "bcot/optim/multi_view_tracker.h"
 #include "bcot/optim/window_problem.h"
-#include "bcot/quality/quality_files.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
 
@@ -74,17 +75,6 @@ StatusOr<std::vector<TrackedView>> SelectViews(const Rig& rig, const ViewSelecti
   return views;
 }
 
-StatusOr<cv::Mat3b> ReadImage(const std::string& path, const Camera& camera) {
-  const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
-  if (image.empty()) return Status::InvalidInput(path + ": cannot read the image");
-  if (image.cols != camera.width || image.rows != camera.height) {
-    return Status::InvalidInput(fmt::format("{}: image is {}x{}, camera '{}' in rig.yaml is {}x{}",
-                                            path, image.cols, image.rows, camera.name, camera.width,
-                                            camera.height));
-  }
-  return cv::Mat3b(image);
-}
-
 std::string FramesCsv(const SequenceAnnotation& annotation) {
   std::string csv = "frame,termination,rounds,iterations,initial_energy,final_energy";
   for (const std::string& name : annotation.view_names) csv += ",energy_" + name;
@@ -136,22 +126,30 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
                                               const AnnotateProgress& progress,
                                               const AnnotateFrameObserver& observer) {
   BCOT_RETURN_IF_ERROR(options.Validate());
+  BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
+                        Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
+  return AnnotateSequence(sequence, RayCaster(mesh), options, progress, observer);
+}
+
+StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence, const RayCaster& caster,
+                                              const AnnotateOptions& options,
+                                              const AnnotateProgress& progress,
+                                              const AnnotateFrameObserver& observer) {
+  BCOT_RETURN_IF_ERROR(options.Validate());
   if (!sequence.init_rig_from_object.has_value()) {
     return Status::NotFound(sequence.dir + "/init_pose.txt: missing (the pose of frame 0)");
   }
   std::vector<int> rig_indices;
   StatusOr<std::vector<TrackedView>> views = SelectViews(sequence.rig, options.views, &rig_indices);
   if (!views.ok()) return views.status();
-  StatusOr<Mesh> mesh = Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm);
-  if (!mesh.ok()) return mesh.status();
-  const RayCaster caster(*mesh);
+  const Mesh& mesh = caster.mesh();
   StatusOr<std::unique_ptr<MultiViewTracker>> tracker =
       MultiViewTracker::Create(caster, *views, options.tracker);
   if (!tracker.ok()) return tracker.status();
 
   SequenceAnnotation annotation;
   for (const TrackedView& view : *views) annotation.view_names.push_back(view.camera.name);
-  const Eigen::Isometry3d objcentre_from_template = mesh->objcentre_from_template();
+  const Eigen::Isometry3d objcentre_from_template = mesh.objcentre_from_template();
   const Eigen::Isometry3d template_from_objcentre = objcentre_from_template.inverse();
   Eigen::Isometry3d rig_from_objcentre = *sequence.init_rig_from_object * template_from_objcentre;
   std::unique_ptr<WindowSmoother> window;
@@ -164,7 +162,7 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
     std::vector<cv::Mat3b> images;
     for (size_t v = 0; v < rig_indices.size(); ++v) {
       StatusOr<cv::Mat3b> image =
-          ReadImage(sequence.image_paths[rig_indices[v]][frame], (*views)[v].camera);
+          ReadCameraImage(sequence.image_paths[rig_indices[v]][frame], (*views)[v].camera);
       if (!image.ok()) return image.status();
       images.push_back(*image);
     }
@@ -221,33 +219,44 @@ Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,
       "# bcot annotate: fully resolved options\n# bcot_version: {}\n# sequence: {}\n"
       "# input_hash: {}\n",
       BCOT_VERSION, sequence.dir, input_hash);
-  BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/config.resolved.yaml", header + config));
-  return WriteFileAtomic(
-      out_dir + "/DONE",
-      fmt::format("config_hash: {}\ninput_hash: {}\nframes: {}\nfailed_frames: {}\n",
-                  AnnotateConfigHash(options), input_hash, annotation.frames.size(),
-                  annotation.failed_frames));
+  return WriteFileAtomic(out_dir + "/config.resolved.yaml", header + config);
 }
 
-Status AnnotateSequenceDir(const std::string& sequence_dir, const std::string& out_dir,
-                           const AnnotateOptions& options, const AnnotateProgress& progress) {
-  // An absolute path, so config.resolved.yaml lets `bcot report` find the images again.
-  StatusOr<Sequence> sequence =
+StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
+                                                const std::string& out_dir,
+                                                const AnnotateOptions& options,
+                                                const AnnotateProgress& progress) {
+  // An absolute path, so DONE lets `bcot report` find the images again.
+  BCOT_ASSIGN_OR_RETURN(
+      const Sequence sequence,
       LoadSequence(std::filesystem::absolute(sequence_dir).lexically_normal().string(),
-                   /*require_init_pose=*/true);
-  if (!sequence.ok()) return sequence.status();
-  StatusOr<std::string> input_hash = SequenceInputHash(*sequence);
-  if (!input_hash.ok()) return input_hash.status();
+                   /*require_init_pose=*/true));
+  BCOT_ASSIGN_OR_RETURN(const std::string input_hash, SequenceInputHash(sequence));
   // A directory holding DONE is complete; take DONE away before anything in it changes.
-  std::error_code error;
-  std::filesystem::remove(out_dir + "/DONE", error);
-  if (error) return Status::IoError(out_dir + "/DONE: cannot remove: " + error.message());
-  StatusOr<SequenceAnnotation> annotation = AnnotateSequence(*sequence, options, progress);
-  if (!annotation.ok()) return annotation.status();
-  StatusOr<QualityReport> quality = WriteQualityReport(
-      out_dir, *sequence, annotation->rig_from_object, annotation->view_names, options.quality);
-  if (!quality.ok()) return quality.status();
-  return WriteAnnotation(out_dir, *sequence, options, *input_hash, *annotation);
+  BCOT_RETURN_IF_ERROR(RemoveDoneFile(out_dir));
+  BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
+                        Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
+  const RayCaster caster(mesh);
+  BCOT_ASSIGN_OR_RETURN(const SequenceAnnotation annotation,
+                        AnnotateSequence(sequence, caster, options, progress));
+  BCOT_RETURN_IF_ERROR(WriteAnnotation(out_dir, sequence, options, input_hash, annotation));
+  BCOT_ASSIGN_OR_RETURN(const QualityReport quality,
+                        MeasureQuality(sequence, caster, annotation.rig_from_object,
+                                       annotation.view_names, options.quality));
+  BCOT_RETURN_IF_ERROR(
+      WriteQualityFiles(out_dir, quality, sequence, caster, annotation.rig_from_object));
+  AnnotationOutcome outcome;
+  outcome.verdict = VerdictOf(quality);
+  outcome.frames = static_cast<int>(annotation.frames.size());
+  outcome.failed_frames = annotation.failed_frames;
+  DoneRecord done;
+  done.config_hash = AnnotateConfigHash(options);
+  done.input_hash = input_hash;
+  done.sequence_dir = sequence.dir;
+  done.frames = outcome.frames;
+  done.failed_frames = outcome.failed_frames;
+  BCOT_RETURN_IF_ERROR(WriteDoneFile(out_dir, done));
+  return outcome;
 }
 
 }  // namespace bcot

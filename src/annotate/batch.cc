@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bcot/annotate/annotator.h"
+#include "bcot/annotate/done_file.h"
 #include "bcot/annotate/regenerate_report.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/html.h"
@@ -24,14 +25,6 @@ namespace bcot {
 namespace {
 
 namespace fs = std::filesystem;
-
-// "key: value" lines of a DONE file; empty when it is missing or unreadable.
-std::string DoneField(const std::string& done_text, const std::string& key) {
-  for (const std::string& line : SplitLines(done_text)) {
-    if (line.rfind(key + ": ", 0) == 0) return line.substr(key.size() + 2);
-  }
-  return "";
-}
 
 // Appends time-stamped lines to <annotation dir>/batch.log. Logs are diagnostics, not
 // outputs: they are appended, not written atomically.
@@ -55,8 +48,7 @@ class SequenceLog {
   std::ofstream file_;
 };
 
-void FillVerdict(const std::string& annotation_dir, BatchSequenceResult* result) {
-  const StatusOr<QualityVerdict> verdict = ReadQualityVerdict(annotation_dir);
+void FillVerdict(const StatusOr<QualityVerdict>& verdict, BatchSequenceResult* result) {
   if (!verdict.ok()) {
     result->accepted = false;
     result->reasons = {verdict.status().message()};
@@ -214,11 +206,11 @@ StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_d
       continue;
     }
     entry.frames = sequence->num_frames;
-    const StatusOr<std::string> done = ReadTextFile(annotation_dir + "/DONE");
-    if (!options.force && done.ok() && DoneField(*done, "config_hash") == config_hash &&
-        DoneField(*done, "input_hash") == *input_hash) {
+    const StatusOr<DoneRecord> done = ReadDoneFile(annotation_dir);
+    if (!options.force && done.ok() && done->config_hash == config_hash &&
+        done->input_hash == *input_hash) {
       entry.outcome = BatchOutcome::kSkipped;
-      FillVerdict(annotation_dir, &entry);
+      FillVerdict(ReadQualityVerdict(annotation_dir), &entry);
       ++state.sequences_done;
       ++state.sequences_skipped;
       result.sequences.push_back(entry);
@@ -260,19 +252,20 @@ StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_d
               report([delta](BatchProgress& s) { s.frames_done += delta; });
             };
             RemoveStaleTempFiles(job.annotation_dir, /*recursive=*/true);
-            Status status;
+            StatusOr<AnnotationOutcome> outcome = Status::Internal("not run");
             try {
-              status = AnnotateSequenceDir(job.sequence_dir, job.annotation_dir, options.annotate,
-                                           on_frame);
+              outcome = AnnotateSequenceDir(job.sequence_dir, job.annotation_dir, options.annotate,
+                                            on_frame);
             } catch (const std::exception& exception) {
-              status = Status::Internal(fmt::format("unexpected exception: {}", exception.what()));
+              outcome = Status::Internal(fmt::format("unexpected exception: {}", exception.what()));
             }
+            const Status status = outcome.status();
             entry.seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - sequence_start)
                     .count();
             if (status.ok()) {
               entry.outcome = BatchOutcome::kAnnotated;
-              FillVerdict(job.annotation_dir, &entry);
+              FillVerdict(outcome->verdict, &entry);
               log.Line(fmt::format("done in {:.1f} s: {}", entry.seconds,
                                    entry.accepted ? "accepted" : "rejected"));
             } else {
@@ -318,6 +311,9 @@ StatusOr<BatchResult> RegenerateBatchReports(const std::string& out_dir,
     }
   }
   if (error) return Status::IoError(out_dir + ": " + error.message());
+  if (annotated.empty()) {
+    return Status::NotFound(out_dir + ": no finished annotation (a folder holding DONE) below it");
+  }
   std::sort(annotated.begin(), annotated.end());
   BatchResult result;
   for (const std::string& relative : annotated) {
@@ -331,7 +327,7 @@ StatusOr<BatchResult> RegenerateBatchReports(const std::string& out_dir,
     } else {
       entry.outcome = BatchOutcome::kReported;
       entry.frames = static_cast<int>(report->frames.size());
-      FillVerdict((fs::path(out_dir) / relative).string(), &entry);
+      FillVerdict(VerdictOf(*report), &entry);
     }
     result.sequences.push_back(entry);
   }

@@ -1,31 +1,37 @@
 #include "bcot/annotate/regenerate_report.h"
 
 #include "bcot/annotate/annotate_options.h"
-#include "bcot/core/file_util.h"
+#include "bcot/annotate/done_file.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/quality/quality_files.h"
+#include "bcot/render/mesh.h"
 
 namespace bcot {
 
 StatusOr<QualityReport> RegenerateQualityReport(const std::string& annotation_dir,
                                                 const std::string& sequence_dir,
                                                 const std::vector<std::string>& overrides) {
-  const std::string config_path = annotation_dir + "/config.resolved.yaml";
-  BCOT_ASSIGN_OR_RETURN(const std::string config_text, ReadTextFile(config_path));
-  std::string recorded_dir;
-  for (const std::string& line : SplitLines(config_text)) {
-    if (line.rfind("# sequence: ", 0) == 0) recorded_dir = line.substr(12);
-  }
-  const std::string dir = sequence_dir.empty() ? recorded_dir : sequence_dir;
+  // Only a finished annotation is reported on: DONE says the poses and the config beside them
+  // belong together, and records the sequence they were solved from.
+  BCOT_ASSIGN_OR_RETURN(const DoneRecord done, ReadDoneFile(annotation_dir));
+  const std::string dir = sequence_dir.empty() ? done.sequence_dir : sequence_dir;
   if (dir.empty()) {
-    return Status::InvalidInput(config_path + ": no '# sequence:' line; pass --sequence");
+    return Status::InvalidInput(annotation_dir + "/DONE: records no sequence; pass --sequence");
   }
-  BCOT_ASSIGN_OR_RETURN(const AnnotateOptions options, ReadAnnotateOptions(config_path, overrides));
+  BCOT_ASSIGN_OR_RETURN(const AnnotateOptions options,
+                        ReadAnnotateOptions(annotation_dir + "/config.resolved.yaml", overrides));
   BCOT_ASSIGN_OR_RETURN(const Sequence sequence, LoadSequence(dir, /*require_init_pose=*/false));
   BCOT_ASSIGN_OR_RETURN(const std::vector<Eigen::Isometry3d> rig_from_object,
                         ReadPoseFile(annotation_dir + "/rig_from_object.txt"));
-  return WriteQualityReport(annotation_dir, sequence, rig_from_object, options.views.cameras,
-                            options.quality);
+  BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
+                        Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
+  const RayCaster caster(mesh);
+  BCOT_ASSIGN_OR_RETURN(
+      QualityReport report,
+      MeasureQuality(sequence, caster, rig_from_object, options.views.cameras, options.quality));
+  BCOT_RETURN_IF_ERROR(
+      WriteQualityFiles(annotation_dir, report, sequence, caster, rig_from_object));
+  return report;
 }
 
 }  // namespace bcot

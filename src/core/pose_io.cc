@@ -1,8 +1,9 @@
 #include "bcot/core/pose_io.h"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "bcot/core/file_util.h"
 #include "bcot/core/se3.h"
@@ -73,13 +74,17 @@ std::string FormatPoseLine(const Eigen::Isometry3d& target_from_source) {
 
 StatusOr<std::vector<Eigen::Isometry3d>> ReadPoseFile(const std::string& path) {
   BCOT_ASSIGN_OR_RETURN(const std::string text, ReadTextFile(path));
-  const std::vector<std::string> lines = SplitLines(text);
+  return ParsePoseLines(SplitLines(text), 0, path);
+}
+
+StatusOr<std::vector<Eigen::Isometry3d>> ParsePoseLines(const std::vector<std::string>& lines,
+                                                        size_t first, const std::string& path) {
   size_t num_lines = lines.size();
-  while (num_lines > 0 && IsBlank(lines[num_lines - 1])) --num_lines;
+  while (num_lines > first && IsBlank(lines[num_lines - 1])) --num_lines;
 
   std::vector<Eigen::Isometry3d> poses;
-  poses.reserve(num_lines);
-  for (size_t i = 0; i < num_lines; ++i) {
+  poses.reserve(num_lines - std::min(first, num_lines));
+  for (size_t i = first; i < num_lines; ++i) {
     const std::string context = fmt::format("{}:{}", path, i + 1);
     if (IsBlank(lines[i])) {
       return Status::InvalidInput(fmt::format(

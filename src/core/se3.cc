@@ -1,10 +1,10 @@
 #include "bcot/core/se3.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 namespace bcot {
 namespace {
@@ -163,8 +163,7 @@ Matrix6d AdjointSE3(const Eigen::Isometry3d& transform) {
   return adjoint;
 }
 
-Eigen::Isometry3d InterpolateSE3(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
-                                 double s) {
+Eigen::Isometry3d InterpolateSE3(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double s) {
   return a * ExpSE3(s * LogSE3(a.inverse() * b));
 }
 
@@ -173,7 +172,7 @@ Eigen::Matrix3d InterpolateSO3(const Eigen::Matrix3d& a, const Eigen::Matrix3d& 
 }
 
 double RotationDistanceDeg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
-  return LogSO3(Eigen::Matrix3d(a.transpose() * b)).norm() * 180.0 / M_PI;
+  return LogSO3(Eigen::Matrix3d(a.transpose() * b)).norm() * 180.0 / kPi;
 }
 
 bool IsRotationMatrix(const Eigen::Matrix3d& rotation, double tolerance, std::string* why) {
@@ -184,7 +183,8 @@ bool IsRotationMatrix(const Eigen::Matrix3d& rotation, double tolerance, std::st
   const double deviation =
       (rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
   if (deviation > tolerance) {
-    if (why) *why = fmt::format("rotation is not orthonormal: RᵀR deviates from I by {:.3g}", deviation);
+    if (why)
+      *why = fmt::format("rotation is not orthonormal: RᵀR deviates from I by {:.3g}", deviation);
     return false;
   }
   const double det = rotation.determinant();

@@ -6,7 +6,7 @@
 namespace bcot {
 namespace {
 
-constexpr double kDegPerRad = 180.0 / 3.14159265358979323846;
+constexpr double kDegPerRad = 180.0 / kPi;
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 

@@ -11,6 +11,7 @@
 
 #include "bcot/core/config_file.h"
 #include "bcot/core/file_util.h"
+#include "bcot/core/image_io.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/yaml_util.h"
 #include "bcot/eval/bcot_layout.h"
@@ -20,14 +21,6 @@ namespace bcot {
 namespace {
 
 namespace fs = std::filesystem;
-
-StatusOr<cv::Mat3b> ReadFrame(const std::string& path) {
-  const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
-  if (image.empty()) {
-    return Status::InvalidInput(fmt::format("{}: cannot read the image", path));
-  }
-  return cv::Mat3b(image);
-}
 
 // Mesh cache: sequences of one object share the loaded mesh.
 class MeshCache {
@@ -173,11 +166,11 @@ StatusOr<SequenceResult> RunTrackingProtocol(const BenchmarkSequence& sequence, 
   result.object = sequence.object;
   if (estimates != nullptr) estimates->assign(1, sequence.gt_cam_from_object[0]);
 
-  BCOT_ASSIGN_OR_RETURN(const cv::Mat3b first, ReadFrame(sequence.image_paths[0]));
+  BCOT_ASSIGN_OR_RETURN(const cv::Mat3b first, ReadColorImage(sequence.image_paths[0]));
   BCOT_RETURN_IF_ERROR(tracker->Reset(first, sequence.gt_cam_from_object[0])
                            .WithContext(sequence.image_paths[0] + ": tracker reset"));
   for (size_t frame = 1; frame < n; ++frame) {
-    BCOT_ASSIGN_OR_RETURN(const cv::Mat3b image, ReadFrame(sequence.image_paths[frame]));
+    BCOT_ASSIGN_OR_RETURN(const cv::Mat3b image, ReadColorImage(sequence.image_paths[frame]));
     if (image.size() != first.size()) {
       return Status::InvalidInput(fmt::format("{}: image is {}x{}, frame 0 is {}x{}",
                                               sequence.image_paths[frame], image.cols, image.rows,
@@ -220,7 +213,7 @@ StatusOr<std::vector<SequenceResult>> EvaluateOnline(
   std::vector<SequenceResult> results;
   for (const BenchmarkSequence& sequence : sequences) {
     BCOT_ASSIGN_OR_RETURN(const Mesh* mesh, meshes.Get(sequence.mesh_path));
-    BCOT_ASSIGN_OR_RETURN(const cv::Mat3b first, ReadFrame(sequence.image_paths.at(0)));
+    BCOT_ASSIGN_OR_RETURN(const cv::Mat3b first, ReadColorImage(sequence.image_paths.at(0)));
     Camera camera = sequence.camera;
     camera.width = first.cols;
     camera.height = first.rows;

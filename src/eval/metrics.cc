@@ -7,11 +7,12 @@
 #include <limits>
 
 #include "bcot/core/config_file.h"
+#include "bcot/core/se3.h"
 
 namespace bcot {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+constexpr double kRadToDeg = 180.0 / kPi;
 
 bool Passes(double error, double threshold) { return !(error > threshold); }
 

@@ -74,18 +74,8 @@ StatusOr<Camera> ReadRbotCalibration(const std::string& path) {
 StatusOr<std::vector<Eigen::Isometry3d>> ReadRbotPoses(const std::string& path) {
   BCOT_ASSIGN_OR_RETURN(const std::string text, ReadTextFile(path));
   const std::vector<std::string> lines = SplitLines(text);
-  size_t end = lines.size();
-  while (end > 0 && IsBlank(lines[end - 1])) --end;
-  std::vector<Eigen::Isometry3d> poses;
-  for (size_t i = FirstDataLine(lines); i < end; ++i) {
-    const std::string context = fmt::format("{}:{}", path, i + 1);
-    if (IsBlank(lines[i])) {
-      return Status::InvalidInput(fmt::format(
-          "{}: blank line before the last pose; line i must hold pose i (one per frame)", context));
-    }
-    BCOT_ASSIGN_OR_RETURN(Eigen::Isometry3d pose, ParsePoseLine(lines[i], context));
-    poses.push_back(pose);
-  }
+  BCOT_ASSIGN_OR_RETURN(std::vector<Eigen::Isometry3d> poses,
+                        ParsePoseLines(lines, FirstDataLine(lines), path));
   if (poses.empty()) return Status::InvalidInput(fmt::format("{}: no poses", path));
   return poses;
 }

@@ -11,11 +11,13 @@
 #include "bcot/core/camera.h"
 #include "bcot/core/config_file.h"
 #include "bcot/core/file_util.h"
+#include "bcot/core/image_io.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/sequence.h"
 #include "bcot/core/yaml_util.h"
 #include "bcot/eval/bcot_layout.h"
 #include "bcot/render/mesh.h"
+#include "bcot/render/mesh_writer.h"
 
 namespace bcot {
 namespace {
@@ -33,21 +35,6 @@ std::string FolderNameProblem(const std::string& name) {
 }
 
 bool IsWholeNumber(double value) { return std::abs(value - std::round(value)) < 1e-9; }
-
-// Mesh as OBJ text (mm, the template frame).
-std::string FormatObj(const Mesh& mesh, const std::string& object) {
-  std::string text = fmt::format("# {}: written by bcot export (bcot " BCOT_VERSION
-                                 "), units mm, object template frame\n"
-                                 "# {} vertices, {} triangles\n",
-                                 object, mesh.vertices().size(), mesh.triangles().size());
-  for (const Eigen::Vector3f& v : mesh.vertices()) {
-    text += fmt::format("v {} {} {}\n", v.x(), v.y(), v.z());
-  }
-  for (const Eigen::Vector3i& t : mesh.triangles()) {
-    text += fmt::format("f {} {} {}\n", t.x() + 1, t.y() + 1, t.z() + 1);
-  }
-  return text;
-}
 
 // Remap tables taking a distorted image of `camera` to the ideal pinhole image with the same K.
 void UndistortMaps(const Camera& camera, cv::Mat1f* map_x, cv::Mat1f* map_y) {
@@ -240,17 +227,12 @@ StatusOr<ExportSummary> ExportToBcot(const std::string& sequence_dir,
     const cv::Size out_size(e.exported.width, e.exported.height);
     tbb::parallel_for(size_t{0}, frames.size(), [&](size_t i) {
       const std::string& path = sequence.image_paths[e.index][frames[i]];
-      cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
-      if (image.empty()) {
-        statuses[i] = Status::InvalidInput(fmt::format("{}: cannot read the image", path));
+      StatusOr<cv::Mat3b> read = ReadCameraImage(path, e.camera);
+      if (!read.ok()) {
+        statuses[i] = read.status();
         return;
       }
-      if (image.cols != e.camera.width || image.rows != e.camera.height) {
-        statuses[i] = Status::InvalidInput(
-            fmt::format("{}: image is {}x{}, rig.yaml says {}x{} for camera '{}'", path, image.cols,
-                        image.rows, e.camera.width, e.camera.height, e.camera.name));
-        return;
-      }
+      cv::Mat image = *read;
       if (!map_x.empty()) {
         cv::Mat undistorted;
         cv::remap(image, undistorted, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
@@ -279,7 +261,12 @@ StatusOr<ExportSummary> ExportToBcot(const std::string& sequence_dir,
     summary.frames_per_camera = static_cast<int>(frames.size());
   }
   summary.model_path = BcotModelPath(out_root, object);
-  BCOT_RETURN_IF_ERROR(WriteFileAtomic(summary.model_path, FormatObj(mesh, object)));
+  BCOT_RETURN_IF_ERROR(WriteFileAtomic(
+      summary.model_path,
+      FormatObjMesh(mesh, fmt::format("{}: written by bcot export (bcot " BCOT_VERSION
+                                      "), units mm, object template frame\n"
+                                      "{} vertices, {} triangles",
+                                      object, mesh.vertices().size(), mesh.triangles().size()))));
   summary.width = exports[0].exported.width;
   summary.height = exports[0].exported.height;
   return summary;

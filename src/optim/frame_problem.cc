@@ -93,8 +93,6 @@ const char* FrameTerminationName(FrameTermination termination) {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // The template and cost options of pyramid level `level` (scale 2^level, see the header).
 struct LevelOptions {
   RegionTemplateOptions region;

@@ -14,7 +14,6 @@
 namespace bcot {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Model points closer to the camera plane than this (mm) make the evaluation fail.
 constexpr double kMinDepthMm = 1e-6;
 

@@ -10,6 +10,7 @@
 #include <memory>
 #include <utility>
 
+#include "bcot/core/se3.h"
 #include "bcot/optim/correspondence_line_cost.h"
 #include "bcot/optim/motion_prior_cost.h"
 #include "bcot/optim/region_cost.h"
@@ -17,11 +18,7 @@
 #include "violations.h"
 
 namespace bcot {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
+namespace {}  // namespace
 
 // A prior term spans 3 (velocity) or 4 (acceleration) frames, so a term touching the window
 // reaches that many frames − 1 out of it.

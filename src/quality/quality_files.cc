@@ -10,6 +10,7 @@
 
 #include "bcot/core/file_util.h"
 #include "bcot/core/html.h"
+#include "bcot/core/image_io.h"
 #include "bcot/render/mesh.h"
 
 namespace bcot {
@@ -68,8 +69,7 @@ std::string ViewPlot(const QualityReport& report, size_t v) {
 StatusOr<std::string> Thumbnail(const RayCaster& caster, const Camera& camera,
                                 const Eigen::Isometry3d& cam_from_object,
                                 const std::string& image_path, const QualityOptions& options) {
-  cv::Mat image = cv::imread(image_path, cv::IMREAD_COLOR);
-  if (image.empty()) return Status::InvalidInput(image_path + ": cannot read the image");
+  BCOT_ASSIGN_OR_RETURN(const cv::Mat3b image, ReadCameraImage(image_path, camera));
   const std::vector<ContourPoint> contour =
       caster.ExtractContour(camera, cam_from_object, QualityContourOptions(options));
   cv::Rect box(0, 0, image.cols, image.rows);
@@ -118,9 +118,7 @@ std::string QualityJson(const QualityReport& report) {
                      {"search_radius_px", report.options.search_radius_px},
                      {"fit_rigid_motion", report.options.fit_rigid_motion}};
   json["num_frames"] = report.frames.size();
-  double worst = 0.0;
   for (const ViewQualitySummary& view : report.views) {
-    worst = std::max(worst, view.worst_px);
     json["views"].push_back({{"name", view.name},
                              {"bad_frames", view.bad_frames},
                              {"bad_fraction", view.bad_fraction},
@@ -128,7 +126,7 @@ std::string QualityJson(const QualityReport& report) {
                              {"worst_px", view.worst_px},
                              {"worst_frames", view.worst_frames}});
   }
-  json["worst_px"] = worst;
+  json["worst_px"] = VerdictOf(report).worst_px;
   for (size_t f = 0; f < report.frames.size(); ++f) {
     nlohmann::ordered_json frame = {{"frame", f}};
     for (size_t v = 0; v < report.view_names.size(); ++v) {
@@ -160,10 +158,8 @@ std::string QualityCsv(const QualityReport& report) {
 }
 
 StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& sequence,
+                                  const RayCaster& caster,
                                   const std::vector<Eigen::Isometry3d>& rig_from_object) {
-  BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
-                        Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
-  const RayCaster caster(mesh);
   std::string html = fmt::format(
       "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
       "<title>bcot quality: {0}</title><style>"
@@ -239,17 +235,25 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
   return html;
 }
 
-StatusOr<QualityReport> WriteQualityReport(const std::string& out_dir, const Sequence& sequence,
-                                           const std::vector<Eigen::Isometry3d>& rig_from_object,
-                                           const std::vector<std::string>& view_names,
-                                           const QualityOptions& options) {
-  BCOT_ASSIGN_OR_RETURN(QualityReport report,
-                        MeasureQuality(sequence, rig_from_object, view_names, options));
-  BCOT_ASSIGN_OR_RETURN(const std::string html, QualityHtml(report, sequence, rig_from_object));
+Status WriteQualityFiles(const std::string& out_dir, const QualityReport& report,
+                         const Sequence& sequence, const RayCaster& caster,
+                         const std::vector<Eigen::Isometry3d>& rig_from_object) {
+  BCOT_ASSIGN_OR_RETURN(const std::string html,
+                        QualityHtml(report, sequence, caster, rig_from_object));
   BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/quality.json", QualityJson(report)));
   BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/quality.csv", QualityCsv(report)));
-  BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/report.html", html));
-  return report;
+  return WriteFileAtomic(out_dir + "/report.html", html);
+}
+
+QualityVerdict VerdictOf(const QualityReport& report) {
+  QualityVerdict verdict;
+  verdict.accepted = report.accepted;
+  verdict.reasons = report.reasons;
+  for (const ViewQualitySummary& view : report.views) {
+    verdict.worst_px = std::max(verdict.worst_px, view.worst_px);
+  }
+  verdict.frames = static_cast<int>(report.frames.size());
+  return verdict;
 }
 
 StatusOr<QualityVerdict> ReadQualityVerdict(const std::string& annotation_dir) {

@@ -8,6 +8,7 @@
 #include <limits>
 #include <opencv2/imgcodecs.hpp>
 
+#include "bcot/core/image_io.h"
 #include "bcot/optim/silhouette.h"
 #include "bcot/quality/boundary_search.h"
 #include "bcot/quality/rigid_motion_fit.h"
@@ -39,12 +40,7 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
                                        const std::string& image_path,
                                        const Eigen::Vector3d& object_centre,
                                        double object_diameter_mm, const QualityOptions& options) {
-  const cv::Mat image = cv::imread(image_path, cv::IMREAD_COLOR);
-  if (image.empty()) return Status::InvalidInput(image_path + ": cannot read the image");
-  if (image.cols != camera.width || image.rows != camera.height) {
-    return Status::InvalidInput(fmt::format("{}: image is {}x{}, rig.yaml says {}x{}", image_path,
-                                            image.cols, image.rows, camera.width, camera.height));
-  }
+  BCOT_ASSIGN_OR_RETURN(const cv::Mat3b image, ReadCameraImage(image_path, camera));
   ViewFrameQuality quality;
   const Silhouette silhouette =
       RenderSilhouette(caster, camera, cam_from_object, QualityContourOptions(options));
@@ -59,8 +55,7 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
   color.sample_margin_px = options.color_margin_px;
   color.kind = options.color_kind;
   const std::unique_ptr<ColorModel> model = MakeColorModel(color, object_diameter_mm);
-  const cv::Mat3b image3(image);
-  model->Update(image3, silhouette);
+  model->Update(image, silhouette);
 
   double min_x = camera.width, min_y = camera.height, max_x = 0, max_y = 0;
   for (const ContourPoint& point : silhouette.contour) {
@@ -81,7 +76,7 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
   for (int y = roi.y; y < roi.y + roi.height; ++y) {
     for (int x = roi.x; x < roi.x + roi.width; ++x) pixels.emplace_back(x, y);
   }
-  const std::vector<double> posteriors = model->ForegroundPosteriors(image3, pixels);
+  const std::vector<double> posteriors = model->ForegroundPosteriors(image, pixels);
   cv::Mat1f posterior(roi.height, roi.width);
   for (size_t i = 0; i < posteriors.size(); ++i) {
     posterior(static_cast<int>(i) / roi.width, static_cast<int>(i) % roi.width) =
@@ -170,15 +165,22 @@ StatusOr<QualityReport> MeasureQuality(const Sequence& sequence,
                                        const std::vector<Eigen::Isometry3d>& rig_from_object,
                                        const std::vector<std::string>& view_names,
                                        const QualityOptions& options) {
+  BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
+                        Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
+  return MeasureQuality(sequence, RayCaster(mesh), rig_from_object, view_names, options);
+}
+
+StatusOr<QualityReport> MeasureQuality(const Sequence& sequence, const RayCaster& caster,
+                                       const std::vector<Eigen::Isometry3d>& rig_from_object,
+                                       const std::vector<std::string>& view_names,
+                                       const QualityOptions& options) {
   BCOT_RETURN_IF_ERROR(options.Validate());
   if (static_cast<int>(rig_from_object.size()) != sequence.num_frames) {
     return Status::InvalidInput(fmt::format("{}: {} poses for {} frames", sequence.dir,
                                             rig_from_object.size(), sequence.num_frames));
   }
   BCOT_ASSIGN_OR_RETURN(const std::vector<int> indices, ViewIndices(sequence.rig, view_names));
-  BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
-                        Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
-  const RayCaster caster(mesh);
+  const Mesh& mesh = caster.mesh();
   QualityReport report;
   report.sequence_dir = sequence.dir;
   report.options = options;

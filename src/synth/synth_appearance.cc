@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "bcot/core/se3.h"
+
 namespace bcot {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 int Mirror(int i, int n) {
   const int period = 2 * n;

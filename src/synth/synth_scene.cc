@@ -12,7 +12,6 @@
 namespace bcot {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegToRad = kPi / 180.0;
 
 uint64_t SplitMix64(uint64_t* state) {
@@ -573,17 +572,6 @@ Mesh MakeEllipsoidMesh(const Eigen::Vector3d& radii_mm, int rings, int segments)
     }
   }
   return Mesh::FromArrays(std::move(vertices), std::move(triangles));
-}
-
-std::string FormatObjMesh(const Mesh& mesh) {
-  std::string text = "# bcot synth built-in mesh (mm)\n";
-  for (const Eigen::Vector3f& v : mesh.vertices()) {
-    text += fmt::format("v {:.9g} {:.9g} {:.9g}\n", v.x(), v.y(), v.z());
-  }
-  for (const Eigen::Vector3i& t : mesh.triangles()) {
-    text += fmt::format("f {} {} {}\n", t.x() + 1, t.y() + 1, t.z() + 1);
-  }
-  return text;
 }
 
 }  // namespace bcot

@@ -21,12 +21,12 @@
 #include "bcot/core/pose_io.h"
 #include "bcot/core/rig_io.h"
 #include "bcot/core/se3.h"
+#include "bcot/render/mesh_writer.h"
 #include "bcot/synth/synth_appearance.h"
 
 namespace bcot {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegToRad = kPi / 180.0;
 constexpr int kStripRows = 8;  // rows per parallel work item
 
@@ -435,7 +435,9 @@ std::string SynthWorld::ModelRelativePath() const {
 }
 
 Status SynthWorld::WriteModel(const std::string& path) const {
-  if (impl_->mesh_source.empty()) return WriteFileAtomic(path, FormatObjMesh(*impl_->object_mesh));
+  if (impl_->mesh_source.empty())
+    return WriteFileAtomic(path,
+                           FormatObjMesh(*impl_->object_mesh, "bcot synth built-in mesh (mm)"));
   BCOT_ASSIGN_OR_RETURN(const std::string bytes, ReadTextFile(impl_->mesh_source));
   return WriteFileAtomic(path, bytes);
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "bcot/annotate/done_file.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/sequence.h"
@@ -42,12 +43,21 @@ TEST_F(AnnotatorTest, AnnotatesASyntheticSequenceCloseToGroundTruth) {
   test::TempDir out;
   const std::string out_dir = out.File("ann");
   int progress_calls = 0;
-  const Status status =
+  const StatusOr<AnnotationOutcome> outcome =
       AnnotateSequenceDir(SequenceDir(), out_dir, AnnotateOptions(), [&](int done, int total) {
         EXPECT_EQ(total, 4);
         EXPECT_EQ(done, ++progress_calls);
       });
-  ASSERT_TRUE(status.ok()) << status.message();
+  ASSERT_TRUE(outcome.ok()) << outcome.status().message();
+  EXPECT_EQ(outcome->frames, 4);
+  EXPECT_TRUE(outcome->verdict.accepted);
+  // DONE records the hashes and the sequence, read back by its one reader.
+  const StatusOr<DoneRecord> done = ReadDoneFile(out_dir);
+  ASSERT_TRUE(done.ok()) << done.status().message();
+  EXPECT_EQ(done->frames, 4);
+  EXPECT_EQ(done->config_hash, AnnotateConfigHash(AnnotateOptions()));
+  EXPECT_EQ(std::filesystem::path(done->sequence_dir).filename(),
+            std::filesystem::path(SequenceDir()).filename());
   EXPECT_EQ(progress_calls, 4);
   for (const char* file : {"rig_from_object.txt", "cam0/pose.txt", "cam1/pose.txt", "frames.csv",
                            "config.resolved.yaml", "DONE"}) {
@@ -72,9 +82,7 @@ TEST_F(AnnotatorTest, AnnotatesASyntheticSequenceCloseToGroundTruth) {
       ReadPoseFile(SequenceDir() + "/gt/cam1/pose.txt");
   ASSERT_TRUE(cam1.ok() && cam1_truth.ok());
   EXPECT_THAT((*cam1)[3], test::PoseNear((*cam1_truth)[3], 0.5, 1.0));
-  const StatusOr<std::string> done = ReadTextFile(out_dir + "/DONE");
-  ASSERT_TRUE(done.ok());
-  EXPECT_THAT(*done, HasSubstr("failed_frames: 0"));
+  EXPECT_EQ(done->failed_frames, 0);
   const StatusOr<std::string> config = ReadTextFile(out_dir + "/config.resolved.yaml");
   ASSERT_TRUE(config.ok());
   EXPECT_THAT(*config, HasSubstr("input_hash:"));
@@ -117,7 +125,7 @@ TEST_F(AnnotatorTest, BadInputsAreErrorsNamingTheFile) {
   std::filesystem::copy(SequenceDir(), seq, std::filesystem::copy_options::recursive);
   // A mesh that does not load.
   test::WriteText(seq + "/model/bunny.obj", "this is not a mesh\n");
-  const Status bad_mesh = AnnotateSequenceDir(seq, copy.File("out"), AnnotateOptions());
+  const Status bad_mesh = AnnotateSequenceDir(seq, copy.File("out"), AnnotateOptions()).status();
   EXPECT_FALSE(bad_mesh.ok());
   EXPECT_THAT(bad_mesh.message(), HasSubstr("bunny.obj"));
   EXPECT_FALSE(std::filesystem::exists(copy.File("out/DONE")));
@@ -125,7 +133,7 @@ TEST_F(AnnotatorTest, BadInputsAreErrorsNamingTheFile) {
   std::filesystem::copy_file(SequenceDir() + "/model/bunny.obj", seq + "/model/bunny.obj",
                              std::filesystem::copy_options::overwrite_existing);
   test::WriteText(seq + "/cam1/000002.png", "not a png");
-  const Status bad_image = AnnotateSequenceDir(seq, copy.File("out"), AnnotateOptions());
+  const Status bad_image = AnnotateSequenceDir(seq, copy.File("out"), AnnotateOptions()).status();
   EXPECT_EQ(bad_image.code(), StatusCode::kInvalidInput);
   EXPECT_THAT(bad_image.message(), HasSubstr("cam1/000002.png"));
   EXPECT_FALSE(std::filesystem::exists(copy.File("out/DONE")));

@@ -19,8 +19,6 @@ namespace {
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
-constexpr double kPi = 3.14159265358979323846;
-
 // `pose` turned by `deg` about the object's x axis (object frame), translation unchanged.
 Eigen::Isometry3d Turned(const Eigen::Isometry3d& pose, double deg) {
   Eigen::Isometry3d turned = pose;

@@ -11,7 +11,6 @@
 namespace bcot {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 Eigen::Matrix3d RotZ(double deg) { return ExpSO3(Eigen::Vector3d(0, 0, deg * kPi / 180.0)); }

@@ -36,8 +36,7 @@ TEST(RegionMonocularTrackerTest, TracksInTheTemplateFrameAndReportsALostObject) 
                   .ok());
   const Eigen::Vector3d axis = Eigen::Vector3d(1.0, 0.4, -0.3).normalized();
   for (int frame = 1; frame <= 3; ++frame) {
-    cam_from_objcentre.linear() =
-        ExpSO3(axis * 2.0 * test::kTestPi / 180.0) * cam_from_objcentre.linear();
+    cam_from_objcentre.linear() = ExpSO3(axis * 2.0 * kPi / 180.0) * cam_from_objcentre.linear();
     cam_from_objcentre.translation() += Eigen::Vector3d(4.0, 3.0, 0.0);
     const StatusOr<Eigen::Isometry3d> estimate =
         (*tracker)->Track(test::RenderTestImage(caster, camera, cam_from_objcentre, 1 + frame));

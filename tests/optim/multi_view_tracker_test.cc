@@ -164,7 +164,7 @@ TEST_F(MultiViewTrackerTest, TracksASmoothMotion) {
   ASSERT_TRUE(tracker->Reset(RenderViews(*caster_, scene, truth, 50), pose).ok());
   const Eigen::Vector3d axis = Eigen::Vector3d(0.3, 1.0, -0.2).normalized();
   for (int frame = 1; frame <= 5; ++frame) {
-    truth.linear() = truth.linear() * ExpSO3(axis * 2.0 * test::kTestPi / 180.0);
+    truth.linear() = truth.linear() * ExpSO3(axis * 2.0 * kPi / 180.0);
     truth.translation() += Eigen::Vector3d(4.0, -2.0, 1.0);
     const StatusOr<FrameSummary> summary =
         tracker->Track(RenderViews(*caster_, scene, truth, 50 + 2 * frame), &pose);
@@ -191,8 +191,8 @@ TEST(PredictPoseTest, ContinuesAConstantMotionAboutTheObjectCentre) {
   EXPECT_THAT(PredictPose(before, last, 0.0), test::PoseNear(last, 1e-9, 1e-9));
   const Eigen::Isometry3d half = PredictPose(before, last, 0.5);
   EXPECT_NEAR(test::TranslationErrorMm(half, last), 0.5 * displacement.norm(), 1e-9);
-  EXPECT_NEAR(test::RotationErrorDeg(half, last),
-              0.5 * LogSO3(rotation_step).norm() * 180.0 / test::kTestPi, 1e-9);
+  EXPECT_NEAR(test::RotationErrorDeg(half, last), 0.5 * LogSO3(rotation_step).norm() * 180.0 / kPi,
+              1e-9);
 }
 
 // Fast motion: 6° and 25 mm (about 30 px) per frame, more than one band (12 px) can capture
@@ -205,7 +205,7 @@ TEST_F(MultiViewTrackerTest, VelocityPredictionFollowsAFastMotion) {
   ASSERT_TRUE(tracker->Reset(RenderViews(*caster_, scene, truth, 70), pose).ok());
   const Eigen::Vector3d axis = Eigen::Vector3d(-0.4, 1.0, 0.3).normalized();
   for (int frame = 1; frame <= 4; ++frame) {
-    truth.linear() = ExpSO3(axis * 6.0 * test::kTestPi / 180.0) * truth.linear();
+    truth.linear() = ExpSO3(axis * 6.0 * kPi / 180.0) * truth.linear();
     truth.translation() += Eigen::Vector3d(20.0, -12.0, 8.0);
     const StatusOr<FrameSummary> summary =
         tracker->Track(RenderViews(*caster_, scene, truth, 70 + 2 * frame), &pose);

@@ -11,8 +11,6 @@
 namespace bcot {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 Eigen::Isometry3d RandomPose(std::mt19937& rng, double angle) {
   std::normal_distribution<double> normal;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
@@ -75,9 +73,8 @@ TEST(PoseDampingCostTest, GradientCheckerAcceptsTheJacobian) {
     PoseParameters x = ToPoseParameters(pose);
     const double* parameters[] = {x.data()};
     ceres::GradientChecker::ProbeResults results;
-    EXPECT_TRUE(checker.Probe(parameters, 1e-7, &results))
-        << "angle " << relative_angle << "\n"
-        << results.error_log;
+    EXPECT_TRUE(checker.Probe(parameters, 1e-7, &results)) << "angle " << relative_angle << "\n"
+                                                           << results.error_log;
   }
 }
 

@@ -19,8 +19,6 @@
 namespace bcot {
 namespace {
 
-using test::kTestPi;
-
 using test::GradientScenarios;
 using test::Scenario;
 using test::ScenarioCamera;
@@ -197,7 +195,7 @@ InPlaneError InPlaneErrorOf(const Eigen::Isometry3d& cam_from_objcentre,
   error.translation_mm = (cam_from_objcentre.translation() - truth.translation()).head<2>().norm();
   const Eigen::Vector3d rotation =
       LogSO3(Eigen::Matrix3d(cam_from_objcentre.linear() * truth.linear().transpose()));
-  error.rotation_deg = std::abs(rotation.z()) * 180.0 / kTestPi;
+  error.rotation_deg = std::abs(rotation.z()) * 180.0 / kPi;
   return error;
 }
 
@@ -272,7 +270,7 @@ TEST_F(RegionCostTest, SingleViewConvergesFromInPlanePerturbation) {
       test::MakeCamFromObjcentre(Eigen::Vector3d(0.0, 0.15, 0.3), {10.0, -5.0, 450.0});
   const cv::Mat3b image = test::RenderTestImage(*caster_, camera, truth);
   Eigen::Isometry3d init = truth;
-  init.linear() = ExpSO3(Eigen::Vector3d(0.0, 0.0, 2.0 * kTestPi / 180.0)) * truth.linear();
+  init.linear() = ExpSO3(Eigen::Vector3d(0.0, 0.0, 2.0 * kPi / 180.0)) * truth.linear();
   init.translation() += Eigen::Vector3d(4.0, -3.0, 0.0);
 
   for (RegionResidualForm form : {RegionResidualForm::kSqrtEnergy, RegionResidualForm::kIrls}) {

@@ -21,8 +21,6 @@
 
 namespace bcot::test {
 
-constexpr double kTestPi = 3.14159265358979323846;
-
 inline Mesh TestSpoolMesh() {
   const StatusOr<Mesh> spool = Mesh::Load(SourcePath("data/meshes/spool.off"), 150.0);
   BCOT_CHECK(spool.ok());
@@ -64,7 +62,7 @@ inline Eigen::Isometry3d Perturb(const Eigen::Isometry3d& truth, unsigned seed,
   const Eigen::Vector3d direction =
       Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
   Eigen::Isometry3d perturbed = truth;
-  perturbed.linear() = truth.linear() * ExpSO3(axis * degrees * kTestPi / 180.0);
+  perturbed.linear() = truth.linear() * ExpSO3(axis * degrees * kPi / 180.0);
   perturbed.translation() += mm * direction;
   return perturbed;
 }
@@ -129,13 +127,13 @@ inline std::vector<Scenario> GradientScenarios() {
       {"near_identity_rotation",
        test::MakeCamFromObjcentre(Eigen::Vector3d(1e-4, -2e-4, 5e-5), {5.0, -3.0, 450.0})},
       {"near_pi_rotation",
-       test::MakeCamFromObjcentre((kTestPi - 1e-2) * Eigen::Vector3d(0.2, 0.9, 0.3).normalized(),
+       test::MakeCamFromObjcentre((kPi - 1e-2) * Eigen::Vector3d(0.2, 0.9, 0.3).normalized(),
                                   {-10.0, 8.0, 480.0})},
       // The object's centre projects ~15 px from the right border: part of it is cut off.
       {"object_at_image_border",
        test::MakeCamFromObjcentre(Eigen::Vector3d(0.3, 0.5, 0.1), {250.0, 20.0, 450.0}), true},
       // The flanges' flat faces (normal = object x) are seen 3° from edge-on.
-      {"grazing_view", test::MakeCamFromObjcentre(Eigen::Vector3d(0.0, 3.0 * kTestPi / 180.0, 0.0),
+      {"grazing_view", test::MakeCamFromObjcentre(Eigen::Vector3d(0.0, 3.0 * kPi / 180.0, 0.0),
                                                   {30.0, -20.0, 420.0})},
   };
 }
@@ -188,7 +186,7 @@ struct BinocularScene {
   BinocularScene() {
     const Eigen::Vector3d object_in_rig(8.0, -6.0, 450.0);
     Eigen::Isometry3d rig_from_cam1 = Eigen::Isometry3d::Identity();
-    rig_from_cam1.linear() = ExpSO3(Eigen::Vector3d(0.0, -kTestPi / 2.0, 0.0));
+    rig_from_cam1.linear() = ExpSO3(Eigen::Vector3d(0.0, -kPi / 2.0, 0.0));
     rig_from_cam1.translation() = object_in_rig + Eigen::Vector3d(450.0, 0.0, 0.0);
     cam1_from_rig = rig_from_cam1.inverse();
     rig_from_objcentre.linear() = ExpSO3(Eigen::Vector3d(0.4, -0.7, 0.25));

@@ -7,12 +7,12 @@
 
 #include <random>
 
+#include "bcot/core/se3.h"
+
 namespace bcot {
 namespace {
 
 using namespace ceres;  // NOLINT: the invariant matchers expect ceres names unqualified
-
-constexpr double kPi = 3.14159265358979323846;
 
 Vector6d RandomTwist(std::mt19937& rng, double rotation_scale, double translation_scale) {
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
@@ -47,10 +47,9 @@ TEST(Se3ManifoldTest, PlusIsRightMultiplicationByExp) {
     PoseParameters result;
     ASSERT_TRUE(manifold.Plus(x.data(), delta.data(), result.data()));
     const Eigen::Isometry3d expected = t * ExpSE3(delta);
-    EXPECT_LT((FromPoseParameters(result.data()).matrix() - expected.matrix())
-                  .cwiseAbs()
-                  .maxCoeff(),
-              1e-10)
+    EXPECT_LT(
+        (FromPoseParameters(result.data()).matrix() - expected.matrix()).cwiseAbs().maxCoeff(),
+        1e-10)
         << angle;
   }
 }

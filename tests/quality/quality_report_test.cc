@@ -45,7 +45,7 @@ cv::Mat1f DiskPosterior(const cv::Size& size, const Eigen::Vector2d& centre, dou
 std::vector<ContourPoint> Circle(const Eigen::Vector2d& centre, double radius, int count) {
   std::vector<ContourPoint> contour(count);
   for (int i = 0; i < count; ++i) {
-    const double angle = 2 * M_PI * i / count;
+    const double angle = 2 * kPi * i / count;
     contour[i].normal = Eigen::Vector2d(std::cos(angle), std::sin(angle));
     contour[i].pixel = centre + radius * contour[i].normal;
   }
@@ -298,9 +298,13 @@ TEST_F(QualityOnSynthTest, WritesJsonCsvAndSelfContainedHtml) {
       ReadPoseFile(dir_->File("seq/gt/rig_from_object.txt"));
   ASSERT_TRUE(gt.ok());
   test::TempDir out;
+  const StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
+  ASSERT_TRUE(mesh.ok());
+  const RayCaster caster(*mesh);
   const StatusOr<QualityReport> report =
-      WriteQualityReport(out.path(), *sequence, *gt, {"cam1"}, QualityOptions());
+      MeasureQuality(*sequence, caster, *gt, {"cam1"}, QualityOptions());
   ASSERT_TRUE(report.ok()) << report.status().message();
+  ASSERT_TRUE(WriteQualityFiles(out.path(), *report, *sequence, caster, *gt).ok());
   const nlohmann::json json = nlohmann::json::parse(*ReadTextFile(out.File("quality.json")));
   EXPECT_EQ(json["verdict"], "accepted");
   EXPECT_EQ(json["frames"].size(), 6u);
@@ -316,6 +320,11 @@ TEST_F(QualityOnSynthTest, WritesJsonCsvAndSelfContainedHtml) {
   ASSERT_TRUE(verdict.ok());
   EXPECT_TRUE(verdict->accepted);
   EXPECT_EQ(verdict->frames, 6);
+  // The verdict read back from quality.json is the one of the report in memory.
+  const QualityVerdict in_memory = VerdictOf(*report);
+  EXPECT_EQ(in_memory.accepted, verdict->accepted);
+  EXPECT_EQ(in_memory.frames, verdict->frames);
+  EXPECT_NEAR(in_memory.worst_px, verdict->worst_px, 1e-9);
 }
 
 }  // namespace

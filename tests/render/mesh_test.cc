@@ -261,7 +261,7 @@ TEST(MeshTest, BoundsCentreAndTransforms) {
   EXPECT_EQ(centred.triangles(), mesh.triangles());
 
   Eigen::Isometry3d rotated = Eigen::Isometry3d::Identity();
-  rotated.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  rotated.linear() = Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const Mesh turned = mesh.Transformed(rotated);
   // x extent 4 becomes y extent 4.
   EXPECT_NEAR(turned.bbox_max().y() - turned.bbox_min().y(), 4.0, 1e-6);

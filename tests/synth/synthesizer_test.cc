@@ -20,7 +20,7 @@
 namespace bcot {
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kDegToRad = kPi / 180.0;
 
 // ---------------------------------------------------------------------------------------------
 // Camera layout.

@@ -5,6 +5,11 @@
 // (window_problem.h) then refines the poses, streaming: it runs while the frames are solved and
 // keeps the templates of at most window.size + window.ContextFrames() (2 or 3) frames.
 //
+// One pass (AnnotateSequenceDir): remove DONE → solve every frame → write the poses, frames.csv
+// and config.resolved.yaml → measure the quality on the poses in memory with the same mesh and
+// ray caster → write the report files → write DONE. A failure while writing the report leaves
+// the poses on disk (without DONE, so a rerun redoes the sequence).
+//
 // Outputs in `out_dir`, each written atomically (temp + rename):
 //   rig_from_object.txt     one pose line per frame (O_t, mm)
 //   <camera>/pose.txt       cam_from_object per frame, for every rig camera (also unused ones)
@@ -13,8 +18,9 @@
 //   quality.json, quality.csv, report.html   the reprojection-error check (quality_report.h)
 //   config.resolved.yaml    every option used, the tool version, the sequence's absolute path
 //                           and the input hash
-//   DONE                    last; holds the config and input hashes. Removed first when a run
-//                           starts, so a directory with DONE is always complete and consistent.
+//   DONE                    last (done_file.h): the config and input hashes and the sequence.
+//                           Removed first when a run starts, so a directory with DONE is always
+//                           complete and consistent.
 // A frame whose solve fails (object out of every view, solver failure) keeps the previous
 // pose and is recorded as such in frames.csv; the run continues.
 #pragma once
@@ -28,6 +34,8 @@
 #include "bcot/core/sequence.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/frame_problem.h"
+#include "bcot/quality/quality_files.h"
+#include "bcot/render/ray_caster.h"
 
 namespace bcot {
 
@@ -64,6 +72,11 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
                                               const AnnotateOptions& options,
                                               const AnnotateProgress& progress = {},
                                               const AnnotateFrameObserver& observer = {});
+// The same with the ray caster of the sequence's mesh (O_t, mm) built by the caller.
+StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence, const RayCaster& caster,
+                                              const AnnotateOptions& options,
+                                              const AnnotateProgress& progress = {},
+                                              const AnnotateFrameObserver& observer = {});
 
 // A hash (16 hex digits) of everything a sequence's annotation depends on: rig.yaml,
 // object.yaml, the mesh file, init_pose.txt and every image file's name and size.
@@ -72,13 +85,23 @@ StatusOr<std::string> SequenceInputHash(const Sequence& sequence);
 // The config hash DONE records: a hash (16 hex digits) of FormatAnnotateOptions(options).
 std::string AnnotateConfigHash(const AnnotateOptions& options);
 
-// Writes the annotation directory (see the header comment).
+// Writes the poses, frames.csv and config.resolved.yaml (not the quality files, not DONE).
 Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,
                        const AnnotateOptions& options, const std::string& input_hash,
                        const SequenceAnnotation& annotation);
 
-// Loads the sequence at `sequence_dir`, annotates it and writes `out_dir`.
-Status AnnotateSequenceDir(const std::string& sequence_dir, const std::string& out_dir,
-                           const AnnotateOptions& options, const AnnotateProgress& progress = {});
+// What AnnotateSequenceDir returns besides the files.
+struct AnnotationOutcome {
+  QualityVerdict verdict;
+  int frames = 0;
+  int failed_frames = 0;
+};
+
+// Loads the sequence at `sequence_dir`, annotates it and writes `out_dir` in one pass (see the
+// header comment).
+StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
+                                                const std::string& out_dir,
+                                                const AnnotateOptions& options,
+                                                const AnnotateProgress& progress = {});
 
 }  // namespace bcot

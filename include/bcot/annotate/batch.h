@@ -97,7 +97,8 @@ StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_d
 
 // `bcot report <batch out dir>`: RegenerateQualityReport for every annotation directory
 // under `out_dir` holding DONE (sequence paths as recorded in their config.resolved.yaml), then
-// summary.json / summary.html. Directories whose report fails are recorded as kFailed.
+// summary.json / summary.html. Directories whose report fails are recorded as kFailed. kNotFound
+// (and nothing written) when no annotation directory is found.
 StatusOr<BatchResult> RegenerateBatchReports(const std::string& out_dir,
                                              const std::vector<std::string>& overrides);
 

@@ -36,6 +36,11 @@ std::string FormatPoseLine(const Eigen::Isometry3d& target_from_source);
 // the 1-based line number.
 StatusOr<std::vector<Eigen::Isometry3d>> ReadPoseFile(const std::string& path);
 
+// The same rules for lines[first...] of a file `path` whose earlier lines are a header (RBOT's
+// pose files); messages name `path` and the 1-based line.
+StatusOr<std::vector<Eigen::Isometry3d>> ParsePoseLines(const std::vector<std::string>& lines,
+                                                        size_t first, const std::string& path);
+
 // Writes one line per pose (LF line ends) atomically.
 Status WritePoseFile(const std::string& path, const std::vector<Eigen::Isometry3d>& poses);
 

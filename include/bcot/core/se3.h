@@ -14,6 +14,9 @@
 
 namespace bcot {
 
+// π, for the conversions between degrees and radians used throughout.
+inline constexpr double kPi = 3.14159265358979323846;
+
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
@@ -48,8 +51,7 @@ Vector6d LogSE3(const Eigen::Isometry3d& transform);
 Matrix6d AdjointSE3(const Eigen::Isometry3d& transform);
 
 // Geodesic interpolation a·Exp(s·Log(a⁻¹·b)) for s in [0, 1] (any real s extrapolates).
-Eigen::Isometry3d InterpolateSE3(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
-                                 double s);
+Eigen::Isometry3d InterpolateSE3(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double s);
 // Rotation-only geodesic interpolation (slerp).
 Eigen::Matrix3d InterpolateSO3(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, double s);
 

@@ -14,24 +14,28 @@ namespace bcot {
 
 std::string QualityJson(const QualityReport& report);
 std::string QualityCsv(const QualityReport& report);
-// report.html; reads the worst frames' images and draws the contour of the annotated pose.
+// report.html; reads the worst frames' images and draws the contour of the annotated pose
+// (`caster` holds the sequence's mesh).
 StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& sequence,
+                                  const RayCaster& caster,
                                   const std::vector<Eigen::Isometry3d>& rig_from_object);
 
-// Measures and writes quality.json, quality.csv and report.html into `out_dir`.
-StatusOr<QualityReport> WriteQualityReport(const std::string& out_dir, const Sequence& sequence,
-                                           const std::vector<Eigen::Isometry3d>& rig_from_object,
-                                           const std::vector<std::string>& view_names,
-                                           const QualityOptions& options);
+// Writes quality.json, quality.csv and report.html of `report` into `out_dir`, atomically.
+Status WriteQualityFiles(const std::string& out_dir, const QualityReport& report,
+                         const Sequence& sequence, const RayCaster& caster,
+                         const std::vector<Eigen::Isometry3d>& rig_from_object);
 
-// The verdict stored in `<annotation dir>/quality.json`: "accepted" / "rejected", the reasons
-// and the worst statistic; for summaries over a batch.
+// The verdict of a sequence: accepted or rejected, the reasons and the worst statistic; for
+// the command line and summaries over a batch.
 struct QualityVerdict {
   bool accepted = false;
   std::vector<std::string> reasons;
   double worst_px = 0.0;
   int frames = 0;
 };
+// The verdict of a measurement in memory.
+QualityVerdict VerdictOf(const QualityReport& report);
+// The verdict stored in quality.json (for annotations a run did not redo).
 StatusOr<QualityVerdict> ReadQualityVerdict(const std::string& annotation_dir);
 
 }  // namespace bcot

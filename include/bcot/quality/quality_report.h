@@ -53,6 +53,7 @@
 #include "bcot/core/sequence.h"
 #include "bcot/core/status.h"
 #include "bcot/quality/quality_options.h"
+#include "bcot/render/ray_caster.h"
 
 namespace bcot {
 
@@ -95,6 +96,12 @@ struct QualityReport {
 // sequence; `view_names` are rig cameras (empty = all). Errors: options invalid, pose count
 // mismatch, a camera not in the rig, the mesh or an image does not read.
 StatusOr<QualityReport> MeasureQuality(const Sequence& sequence,
+                                       const std::vector<Eigen::Isometry3d>& rig_from_object,
+                                       const std::vector<std::string>& view_names,
+                                       const QualityOptions& options);
+// The same with the ray caster of the sequence's mesh (O_t, mm) that the caller already built,
+// e.g. the annotator's, so the mesh is neither loaded nor its BVH built again.
+StatusOr<QualityReport> MeasureQuality(const Sequence& sequence, const RayCaster& caster,
                                        const std::vector<Eigen::Isometry3d>& rig_from_object,
                                        const std::vector<std::string>& view_names,
                                        const QualityOptions& options);

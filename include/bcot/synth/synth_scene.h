@@ -177,8 +177,4 @@ Mesh MakeBoxMesh(const Eigen::Vector3d& size_mm);
 Mesh MakeCylinderMesh(double radius_mm, double height_mm, int segments);
 Mesh MakeEllipsoidMesh(const Eigen::Vector3d& radii_mm, int rings, int segments);
 
-// Wavefront OBJ text of a mesh; coordinates printed with 9 significant digits so the float
-// vertices read back exactly.
-std::string FormatObjMesh(const Mesh& mesh);
-
 }  // namespace bcot

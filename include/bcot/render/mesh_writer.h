@@ -1,0 +1,16 @@
+// Writing meshes: the one Wavefront OBJ writer (synth's built-in meshes, the release export).
+#pragma once
+
+#include <string>
+
+#include "bcot/render/mesh.h"
+
+namespace bcot {
+
+// OBJ text of `mesh` (vertices as stored, i.e. mm in the template frame; triangles 1-based),
+// after `comment` (one or more lines without '#', each written as a '# ' comment line). Each
+// coordinate is the shortest decimal that reads back to the same float, so a mesh written and
+// loaded again is the same mesh.
+std::string FormatObjMesh(const Mesh& mesh, const std::string& comment);
+
+}  // namespace bcot

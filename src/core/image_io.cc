@@ -1,0 +1,70 @@
+#include "bcot/core/image_io.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <opencv2/imgcodecs.hpp>
+#include <vector>
+
+namespace bcot {
+namespace {
+
+// Lower-case extension of `path` with the dot ("" when none).
+std::string Extension(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+// libjpeg and libpng decode a truncated file without an error (the missing rows come out grey
+// or black, with at most a warning on stderr), so check the end of the stream before decoding:
+// a JPEG ends with the EOI marker FF D9 (some writers pad after it), a PNG with the IEND chunk.
+Status CheckCompleteImageFile(const std::string& path, const std::vector<unsigned char>& bytes) {
+  const std::string extension = Extension(path);
+  if (extension == ".jpg" || extension == ".jpeg") {
+    size_t end = bytes.size();
+    while (end > 2 && bytes[end - 1] == 0) --end;  // zero padding after EOI
+    if (end < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8 || bytes[end - 2] != 0xFF ||
+        bytes[end - 1] != 0xD9) {
+      return Status::InvalidInput(path + ": corrupt JPEG (truncated: no end-of-image marker)");
+    }
+  } else if (extension == ".png") {
+    static const unsigned char kIend[] = {'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+    if (bytes.size() < 8 + 12 ||
+        !std::equal(std::begin(kIend), std::end(kIend), bytes.end() - sizeof(kIend))) {
+      return Status::InvalidInput(path + ": corrupt PNG (truncated: no IEND chunk at the end)");
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+StatusOr<cv::Mat3b> ReadColorImage(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return Status::InvalidInput(path + ": cannot read the image");
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
+                                         std::istreambuf_iterator<char>());
+  if (!file.good() && !file.eof()) return Status::IoError(path + ": read error");
+  BCOT_RETURN_IF_ERROR(CheckCompleteImageFile(path, bytes));
+  const cv::Mat image = cv::imdecode(bytes, cv::IMREAD_COLOR);
+  if (image.empty()) return Status::InvalidInput(path + ": cannot read the image");
+  return cv::Mat3b(image);
+}
+
+StatusOr<cv::Mat3b> ReadCameraImage(const std::string& path, const Camera& camera) {
+  BCOT_ASSIGN_OR_RETURN(cv::Mat3b image, ReadColorImage(path));
+  if (image.cols != camera.width || image.rows != camera.height) {
+    return Status::InvalidInput(fmt::format("{}: image is {}x{}, camera '{}' in rig.yaml is {}x{}",
+                                            path, image.cols, image.rows, camera.name, camera.width,
+                                            camera.height));
+  }
+  return image;
+}
+
+}  // namespace bcot

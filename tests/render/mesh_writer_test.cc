@@ -1,0 +1,38 @@
+#include "bcot/render/mesh_writer.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "test_util.h"
+
+namespace bcot {
+namespace {
+
+using ::testing::StartsWith;
+
+TEST(MeshWriterTest, ObjTextLoadsBackToTheSameMesh) {
+  // Coordinates that need all of a float's digits.
+  std::vector<Eigen::Vector3f> vertices = {{0.1f, -2.5e-3f, 7.0f / 3.0f},
+                                           {123.456789f, 0.0f, -1e-7f},
+                                           {-33.3333f, 44.4f, 1e4f / 7.0f},
+                                           {5.0f, 5.0f, 5.0f}};
+  std::vector<Eigen::Vector3i> triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}};
+  const Mesh mesh = Mesh::FromArrays(vertices, triangles);
+  const std::string text = FormatObjMesh(mesh, "first line\nsecond line");
+  EXPECT_THAT(text, StartsWith("# first line\n# second line\nv "));
+  test::TempDir dir;
+  test::WriteText(dir.File("mesh.obj"), text);
+  const StatusOr<Mesh> read = Mesh::Load(dir.File("mesh.obj"));
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  ASSERT_EQ(read->vertices().size(), mesh.vertices().size());
+  ASSERT_EQ(read->triangles().size(), mesh.triangles().size());
+  // The loader may reorder vertices; every written vertex must come back exactly.
+  for (const Eigen::Vector3f& v : mesh.vertices()) {
+    bool found = false;
+    for (const Eigen::Vector3f& w : read->vertices()) found = found || v == w;
+    EXPECT_TRUE(found) << v.transpose();
+  }
+}
+
+}  // namespace
+}  // namespace bcot
