@@ -72,7 +72,7 @@ void AddAnnotateCommand(CLI::App& app, int* exit_code) {
       "annotate", "Annotate one sequence directory: joint multi-view pose per frame");
   command->add_option("sequence", flags->sequence_dir, "Sequence directory (holds rig.yaml)")
       ->required();
-  AddConfigFlags(command, &flags->config);
+  AddConfigFlags(command, &flags->config, AnnotateOptionSchema());
   command->add_option("--out", flags->out_dir, "Annotation output directory")->required();
   command->add_flag("--quiet", flags->quiet, "No progress on stderr");
   command->callback([flags, exit_code] { *exit_code = RunAnnotate(*flags); });

@@ -89,7 +89,7 @@ void AddBatchCommand(CLI::App& app, int* exit_code) {
   CLI::App* command = app.add_subcommand(
       "batch", "Annotate every sequence (folder holding rig.yaml) under a directory tree");
   command->add_option("root", flags->root, "Directory tree of sequences")->required();
-  AddConfigFlags(command, &flags->config);
+  AddConfigFlags(command, &flags->config, AnnotateOptionSchema());
   command->add_option("--out", flags->out_dir, "Output root (mirrors the input tree)")->required();
   command->add_option("--jobs", flags->jobs, "Sequences in parallel (0 = one per core)")
       ->check(CLI::NonNegativeNumber)

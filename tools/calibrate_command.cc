@@ -65,7 +65,7 @@ void AddCalibrateCommand(CLI::App& app, int* exit_code) {
   auto flags = std::make_shared<CalibrateFlags>();
   CLI::App* command = app.add_subcommand(
       "calibrate", "Calibrate a camera rig (intrinsics and cam_from_rig) from chessboard images");
-  AddConfigFlags(command, &flags->config);
+  AddConfigFlags(command, &flags->config, CalibrationOptionSchema());
   command->add_option("--images-dir", flags->images_dir,
                       "Folder of chessboard images (sets input.images_dir)");
   command

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "bcot/core/option_schema.h"
+
 namespace bcot::tools {
 
 void AddSynthCommand(CLI::App& app, int* exit_code);
@@ -24,7 +26,16 @@ struct ConfigFlags {
   std::string config_path;
   std::vector<std::string> overrides;
 };
-void AddConfigFlags(CLI::App* command, ConfigFlags* flags);
+// `set_example` ("section.key=value") is one override the command accepts; `options_help` (the
+// schema's option list) becomes the help's footer.
+void AddConfigFlags(CLI::App* command, ConfigFlags* flags, const std::string& set_example,
+                    const std::string& options_help);
+template <typename Options>
+void AddConfigFlags(CLI::App* command, ConfigFlags* flags, const OptionSchema<Options>& schema) {
+  AddConfigFlags(command, flags, schema.Example(), schema.Help());
+}
+// The footer of a command's --help listing its options (OptionSchema::Help()).
+std::string OptionsFooter(const std::string& options_help);
 
 // Prints "bcot <command>: error: <message>" on stderr (one line).
 void PrintError(const std::string& command, const std::string& message);

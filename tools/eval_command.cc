@@ -90,8 +90,10 @@ int RunEval(const EvalFlags& flags) {
 void AddEvalCommand(CLI::App& app, int* exit_code) {
   auto flags = std::make_shared<EvalFlags>();
   CLI::App* command = app.add_subcommand(
-      "eval", "Score monocular 6DoF tracking on a BCOT (or RBOT) benchmark (paper Table 6)");
-  AddConfigFlags(command, &flags->config);
+      "eval",
+      "Score monocular 6DoF tracking on a BCOT (or RBOT) benchmark (paper Table 6); the "
+      "Markdown table goes to stdout");
+  AddConfigFlags(command, &flags->config, EvalOptionSchema());
   command->add_option("--data", flags->data_root, "Benchmark root (BCOT release or RBOT layout)")
       ->required();
   command->add_option("--results", flags->results_root,
@@ -106,10 +108,6 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
                       "Online: override of the tracker config, section.key=value (repeatable)");
   command->add_option("--out", flags->out_dir,
                       "Write eval.md, eval.csv, eval.json, add_curve.svg (and poses/ online) here");
-  command->footer(
-      "Options (YAML keys, --set key=value): layout (bcot|rbot), rbot_variant (a_regular), "
-      "rbot_poses (poses_first.txt), reset_rotation_deg (5), reset_translation_mm (50), "
-      "curve.max_fraction_of_d (0.1), curve.steps (100). The Markdown table goes to stdout.");
   command->callback([flags, exit_code] { *exit_code = RunEval(*flags); });
 }
 

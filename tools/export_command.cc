@@ -48,7 +48,7 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
   auto flags = std::make_shared<ExportFlags>();
   CLI::App* command = app.add_subcommand(
       "export", "Write an annotated sequence in the BCOT release layout (K.txt, pose.txt, frames)");
-  AddConfigFlags(command, &flags->config);
+  AddConfigFlags(command, &flags->config, ExportOptionSchema());
   command->add_option("--sequence", flags->sequence_dir, "Sequence directory (rig.yaml, frames)")
       ->required();
   command
@@ -59,9 +59,6 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
   command->add_option("--out", flags->out_root, "Root of the release tree")->required();
   command->add_flag("--overwrite", flags->overwrite,
                     "Replace an existing <scene>/<Object> folder (same as --set overwrite=true)");
-  command->footer(
-      "Options (YAML keys, --set key=value): frame_step (2), image_scale (0.5), cameras ([] = "
-      "first camera), scene (sequence folder name), object (object.yaml name), overwrite (false).");
   command->callback([flags, exit_code] { *exit_code = RunExport(*flags); });
 }
 

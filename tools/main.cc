@@ -1,18 +1,26 @@
 // bcot: one binary, one subcommand per tool (like `colmap <command>`).
+#include <fmt/format.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
-
-#include <fmt/format.h>
 
 #include "commands.h"
 
 namespace bcot::tools {
 
-void AddConfigFlags(CLI::App* command, ConfigFlags* flags) {
+void AddConfigFlags(CLI::App* command, ConfigFlags* flags, const std::string& set_example,
+                    const std::string& options_help) {
   command->add_option("--config", flags->config_path, "YAML configuration file")
       ->check(CLI::ExistingFile);
   command->add_option("--set", flags->overrides,
-                      "Override one option, e.g. --set render.width=640 (repeatable)");
+                      fmt::format("Override one option, e.g. --set {} (repeatable)", set_example));
+  if (!options_help.empty()) command->footer(OptionsFooter(options_help));
+}
+
+std::string OptionsFooter(const std::string& options_help) {
+  return "Options (YAML keys of --config, or --set key=value): key = default [unit]  (rule) "
+         "meaning\n" +
+         options_help;
 }
 
 void PrintError(const std::string& command, const std::string& message) {

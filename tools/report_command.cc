@@ -10,6 +10,7 @@
 #include "bcot/annotate/batch.h"
 #include "bcot/annotate/regenerate_report.h"
 #include "bcot/quality/quality_files.h"
+#include "bcot/quality/quality_options.h"
 #include "commands.h"
 
 namespace bcot::tools {
@@ -72,8 +73,9 @@ void AddReportCommand(CLI::App& app, int* exit_code) {
   command->add_option("--sequence", flags->sequence_dir,
                       "Sequence directory (default: as recorded in config.resolved.yaml)");
   command->add_option("--set", flags->overrides,
-                      "Override an option of config.resolved.yaml, e.g. --set "
-                      "quality.threshold_px=1 (repeatable)");
+                      "Override an option of config.resolved.yaml, e.g. --set " +
+                          QualityOptionSchema().Example() + " (repeatable)");
+  command->footer(OptionsFooter(QualityOptionSchema().Help()));
   command->callback([flags, exit_code] { *exit_code = RunReport(*flags); });
 }
 

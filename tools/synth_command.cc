@@ -74,7 +74,7 @@ void AddSynthCommand(CLI::App& app, int* exit_code) {
   auto flags = std::make_shared<SynthFlags>();
   CLI::App* command =
       app.add_subcommand("synth", "Render a synthetic multi-view sequence with exact ground truth");
-  AddConfigFlags(command, &flags->config);
+  AddConfigFlags(command, &flags->config, SynthOptionSchema());
   command->add_option("--out", flags->out_dir, "Output sequence directory (new or empty)")
       ->required();
   command->add_flag("--overwrite", flags->overwrite,

@@ -2,87 +2,114 @@
 
 #include <fmt/format.h>
 
-#include "bcot/core/yaml_util.h"
-#include "config_util.h"
+#include <string>
+#include <vector>
 
 namespace bcot {
+namespace {
 
-using capture_internal::ParseSection;
-
-Status CalibrationOptions::Validate() const {
-  capture_internal::Violations v;
-  v.InRange("board.inner_corners_x", board.inner_corners_x, 2, 100);
-  v.InRange("board.inner_corners_y", board.inner_corners_y, 2, 100);
-  v.Positive("board.square_size_mm", board.square_size_mm);
-  if (input.images_dir.empty()) v.Add("input.images_dir", "\"\"", "must name a folder of images");
-  if (input.cameras.empty()) v.Add("input.cameras", "[]", "must list at least one camera");
-  v.CameraNames("input.cameras", input.cameras);
-  v.InRange("detection.subpixel_half_window_px", detection.subpixel_half_window_px, 1, 50);
-  v.Positive("outliers.max_rms_px", outliers.max_rms_px);
-  return v.ToStatus("calibration options");
+// The rule camera name `names[i]` breaks (not usable as a folder name, listed before), or "".
+std::string CameraNameRule(const std::vector<std::string>& names, size_t i) {
+  const std::string& name = names[i];
+  if (name.empty() || name == "." || name == ".." ||
+      name.find_first_of("/\\") != std::string::npos) {
+    return "must be usable as a folder name";
+  }
+  for (size_t j = 0; j < i; ++j) {
+    if (names[j] == name) return "must not be listed twice";
+  }
+  return "";
 }
 
-StatusOr<CalibrationOptions> ParseCalibrationOptions(const YAML::Node& root_node,
+OptionSchema<CalibrationOptions>* BuildCalibrationOptionSchema() {
+  auto* s = new OptionSchema<CalibrationOptions>();
+  s->Add(
+       "board.inner_corners_x", [](auto& o) -> auto& { return o.board.inner_corners_x; }, "",
+       "inner corners per row (a 10x7-square board has 9x6)")
+      .Range(Closed(2, 100));
+  s->Add(
+       "board.inner_corners_y", [](auto& o) -> auto& { return o.board.inner_corners_y; }, "",
+       "inner corners per column")
+      .Range(Closed(2, 100));
+  s->Add(
+       "board.square_size_mm", [](auto& o) -> auto& { return o.board.square_size_mm; }, "mm",
+       "side of one square: the unit of cam_from_rig")
+      .Range(Positive());
+  s->Add(
+       "input.images_dir", [](auto& o) -> auto& { return o.input.images_dir; }, "",
+       "folder of images (relative to the config file), N/<stem>.png or N<stem>.png per camera")
+      .Path()
+      .Check([](const CalibrationOptions& o) {
+        return o.input.images_dir.empty() ? "must name a folder of images" : "";
+      });
+  s->Add(
+       "input.cameras", [](auto& o) -> auto& { return o.input.cameras; }, "",
+       "camera names (also in rig.yaml); the first defines the rig frame")
+      .CheckEach(CameraNameRule)
+      .Check([](const CalibrationOptions& o) {
+        return o.input.cameras.empty() ? "must list at least one camera" : "";
+      });
+  s->Add(
+       "detection.subpixel_half_window_px",
+       [](auto& o) -> auto& { return o.detection.subpixel_half_window_px; }, "px",
+       "cv::cornerSubPix half window (5 -> 11x11)")
+      .Range(Closed(1, 50));
+  s->Add(
+      "detection.adaptive_threshold",
+      [](auto& o) -> auto& { return o.detection.adaptive_threshold; }, "",
+      "adaptive threshold + normalisation in the board search");
+  s->Add(
+      "detection.fast_check", [](auto& o) -> auto& { return o.detection.fast_check; }, "",
+      "quick rejection of images without a board");
+  s->Add(
+      "model.fix_k3", [](auto& o) -> auto& { return o.model.fix_k3; }, "",
+      "keep k3 = 0 (free it only for wide-angle lenses)");
+  s->Add(
+      "model.zero_tangential", [](auto& o) -> auto& { return o.model.zero_tangential; }, "",
+      "keep p1 = p2 = 0");
+  s->Add(
+      "model.fix_aspect_ratio", [](auto& o) -> auto& { return o.model.fix_aspect_ratio; }, "",
+      "force fx = fy");
+  s->Add(
+       "outliers.max_rms_px", [](auto& o) -> auto& { return o.outliers.max_rms_px; }, "px",
+       "images / stereo views above this reprojection RMS are listed")
+      .Range(Positive());
+  s->Add(
+      "outliers.drop", [](auto& o) -> auto& { return o.outliers.drop; }, "",
+      "recalibrate once without the outlier images");
+  return s;
+}
+
+}  // namespace
+
+const OptionSchema<CalibrationOptions>& CalibrationOptionSchema() {
+  static const OptionSchema<CalibrationOptions>* const schema = BuildCalibrationOptionSchema();
+  return *schema;
+}
+
+Status CalibrationOptions::Validate() const {
+  return CalibrationOptionSchema().Validate(*this, nullptr);
+}
+
+StatusOr<CalibrationOptions> ParseCalibrationOptions(const YAML::Node& root,
                                                      const std::string& source_name,
                                                      const std::string& base_dir) {
-  CalibrationOptions o;
-  if (root_node.IsDefined() && !root_node.IsNull()) {
-    YamlMap root(root_node, source_name, "", StatusCode::kInvalidConfig);
-    BCOT_RETURN_IF_ERROR(root.Check());
-    BCOT_RETURN_IF_ERROR(ParseSection(root, "board", [&](YamlMap& m) -> Status {
-      BCOT_RETURN_IF_ERROR(m.GetOptional("inner_corners_x", &o.board.inner_corners_x));
-      BCOT_RETURN_IF_ERROR(m.GetOptional("inner_corners_y", &o.board.inner_corners_y));
-      return m.GetOptional("square_size_mm", &o.board.square_size_mm);
-    }));
-    BCOT_RETURN_IF_ERROR(ParseSection(root, "input", [&](YamlMap& m) -> Status {
-      BCOT_RETURN_IF_ERROR(m.GetOptional("images_dir", &o.input.images_dir));
-      o.input.images_dir = capture_internal::ResolveConfigPath(base_dir, o.input.images_dir);
-      return m.GetOptional("cameras", &o.input.cameras);
-    }));
-    BCOT_RETURN_IF_ERROR(ParseSection(root, "detection", [&](YamlMap& m) -> Status {
-      auto& d = o.detection;
-      BCOT_RETURN_IF_ERROR(m.GetOptional("subpixel_half_window_px", &d.subpixel_half_window_px));
-      BCOT_RETURN_IF_ERROR(m.GetOptional("adaptive_threshold", &d.adaptive_threshold));
-      return m.GetOptional("fast_check", &d.fast_check);
-    }));
-    BCOT_RETURN_IF_ERROR(ParseSection(root, "model", [&](YamlMap& m) -> Status {
-      BCOT_RETURN_IF_ERROR(m.GetOptional("fix_k3", &o.model.fix_k3));
-      BCOT_RETURN_IF_ERROR(m.GetOptional("zero_tangential", &o.model.zero_tangential));
-      return m.GetOptional("fix_aspect_ratio", &o.model.fix_aspect_ratio);
-    }));
-    BCOT_RETURN_IF_ERROR(ParseSection(root, "outliers", [&](YamlMap& m) -> Status {
-      BCOT_RETURN_IF_ERROR(m.GetOptional("max_rms_px", &o.outliers.max_rms_px));
-      return m.GetOptional("drop", &o.outliers.drop);
-    }));
-    BCOT_RETURN_IF_ERROR(root.CheckNoUnknownKeys());
-  }
-  return capture_internal::Validated(std::move(o), source_name);
+  CalibrationOptions options;
+  OptionSources sources;
+  const OptionSchema<CalibrationOptions>& schema = CalibrationOptionSchema();
+  BCOT_RETURN_IF_ERROR(schema.Parse(root, source_name, base_dir, &options, &sources));
+  BCOT_RETURN_IF_ERROR(schema.Validate(options, &sources));
+  return options;
 }
 
 StatusOr<CalibrationOptions> ReadCalibrationOptions(const std::string& path,
                                                     const std::vector<std::string>& overrides) {
-  return capture_internal::ReadOptions<CalibrationOptions>(path, overrides,
-                                                           ParseCalibrationOptions);
+  return CalibrationOptionSchema().Read(path, overrides);
 }
 
-std::string FormatCalibrationOptions(const CalibrationOptions& o) {
-  const auto b = [](bool value) { return value ? "true" : "false"; };
-  std::vector<std::string> cameras;
-  for (const std::string& name : o.input.cameras) cameras.push_back(FormatYamlString(name));
-  std::string y = "# bcot calibrate: fully resolved options (bcot " BCOT_VERSION ")\n";
-  y += fmt::format("board:\n  inner_corners_x: {}\n  inner_corners_y: {}\n  square_size_mm: {}\n",
-                   o.board.inner_corners_x, o.board.inner_corners_y, o.board.square_size_mm);
-  y += fmt::format("input:\n  images_dir: {}\n  cameras: [{}]\n",
-                   FormatYamlString(o.input.images_dir), fmt::join(cameras, ", "));
-  y += fmt::format(
-      "detection:\n  subpixel_half_window_px: {}\n  adaptive_threshold: {}\n  fast_check: {}\n",
-      o.detection.subpixel_half_window_px, b(o.detection.adaptive_threshold),
-      b(o.detection.fast_check));
-  y += fmt::format("model:\n  fix_k3: {}\n  zero_tangential: {}\n  fix_aspect_ratio: {}\n",
-                   b(o.model.fix_k3), b(o.model.zero_tangential), b(o.model.fix_aspect_ratio));
-  y += fmt::format("outliers:\n  max_rms_px: {}\n  drop: {}\n", o.outliers.max_rms_px,
-                   b(o.outliers.drop));
-  return y;
+std::string FormatCalibrationOptions(const CalibrationOptions& options) {
+  return CalibrationOptionSchema().Emit(
+      options, {"bcot calibrate: fully resolved options (bcot " BCOT_VERSION ")"});
 }
 
 }  // namespace bcot

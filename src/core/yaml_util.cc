@@ -62,10 +62,9 @@ struct Context {
   StatusCode code;
 
   Status Error(const std::string& problem) const {
-    if (line > 0) {
-      return Status(code, fmt::format("{}:{}: {}: {}", source_name, line, key_path, problem));
-    }
-    return Status(code, fmt::format("{}: {}: {}", source_name, key_path, problem));
+    const std::string location =
+        line > 0 ? fmt::format("{}:{}", source_name, line) : std::string(source_name);
+    return Status(code, fmt::format("{}: {}", JoinWhere(location, key_path), problem));
   }
   Status TypeError(const std::string& expected, const YAML::Node& node) const {
     return Error(fmt::format("expected {}, got {}", expected, Describe(node)));
@@ -328,6 +327,11 @@ std::string FormatYamlString(const std::string& value) {
   return quoted;
 }
 
+std::string JoinWhere(const std::string& location, const std::string& key_path) {
+  if (location == kCommandLineSource) return fmt::format("{} {}", location, key_path);
+  return fmt::format("{}: {}", location, key_path);
+}
+
 std::string YamlWhere(const std::string& source_name, const YAML::Node& node) {
   if (!HasMark(node)) return source_name;
   return fmt::format("{}:{}", source_name, node.Mark().line + 1);
@@ -411,7 +415,7 @@ std::string YamlMap::Location(const std::string& key) const {
 }
 
 std::string YamlMap::Where(const std::string& key) const {
-  return fmt::format("{}: {}", Location(key), KeyPath(key));
+  return JoinWhere(Location(key), KeyPath(key));
 }
 
 Status YamlMap::Error(const std::string& key, const std::string& problem) const {

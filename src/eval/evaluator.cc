@@ -9,7 +9,6 @@
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 
-#include "bcot/core/config_file.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/image_io.h"
 #include "bcot/core/pose_io.h"
@@ -40,61 +39,56 @@ class MeshCache {
 
 }  // namespace
 
-Status EvalOptions::Validate() const {
-  std::vector<std::string> violations;
-  if (layout != "bcot" && layout != "rbot") {
-    violations.push_back(fmt::format("layout = '{}', must be 'bcot' or 'rbot'", layout));
-  }
-  if (rbot_variant.empty() || rbot_variant.find('/') != std::string::npos) {
-    violations.push_back(
-        fmt::format("rbot_variant = '{}', must be a non-empty file-name prefix", rbot_variant));
-  }
-  if (rbot_poses.empty()) violations.push_back("rbot_poses is empty, must name the GT file");
-  if (!(reset_rotation_deg > 0.0 && reset_rotation_deg <= 180.0)) {
-    violations.push_back(
-        fmt::format("reset_rotation_deg = {}, must be in (0, 180]", reset_rotation_deg));
-  }
-  if (!(reset_translation_mm > 0.0 && std::isfinite(reset_translation_mm))) {
-    violations.push_back(
-        fmt::format("reset_translation_mm = {}, must be > 0", reset_translation_mm));
-  }
-  const Status curve_status = curve.Validate();
-  if (!curve_status.ok()) violations.push_back(curve_status.message());
-  if (violations.empty()) return Status::Ok();
-  return Status::InvalidConfig(JoinMessages(violations));
+namespace {
+
+OptionSchema<EvalOptions>* BuildEvalOptionSchema() {
+  auto* s = new OptionSchema<EvalOptions>();
+  s->Add(
+       "layout", [](auto& o) -> auto& { return o.layout; }, "", "dataset layout of --data")
+      .OneOf({"bcot", "rbot"});
+  s->Add(
+       "rbot_variant", [](auto& o) -> auto& { return o.rbot_variant; }, "",
+       "RBOT only: image variant (a_regular, b_dynamiclight, c_noisy, d_occlusion)")
+      .Check([](const EvalOptions& o) {
+        return o.rbot_variant.empty() || o.rbot_variant.find('/') != std::string::npos
+                   ? "must be a non-empty file-name prefix"
+                   : "";
+      });
+  s->Add(
+       "rbot_poses", [](auto& o) -> auto& { return o.rbot_poses; }, "",
+       "RBOT only: GT file relative to the dataset root")
+      .Check(
+          [](const EvalOptions& o) { return o.rbot_poses.empty() ? "must name the GT file" : ""; });
+  s->Add(
+       "reset_rotation_deg", [](auto& o) -> auto& { return o.reset_rotation_deg; }, "deg",
+       "a frame is lost (and the tracker reset) above this rotation error ...")
+      .Range(LeftOpen(0, 180));
+  s->Add(
+       "reset_translation_mm", [](auto& o) -> auto& { return o.reset_translation_mm; }, "mm",
+       "... or above this translation error")
+      .Range(Positive());
+  s->Include(
+      CurveOptionSchema(), [](auto& o) -> auto& { return o.curve; });
+  return s;
 }
+
+}  // namespace
+
+const OptionSchema<EvalOptions>& EvalOptionSchema() {
+  static const OptionSchema<EvalOptions>* const schema = BuildEvalOptionSchema();
+  return *schema;
+}
+
+Status EvalOptions::Validate() const { return EvalOptionSchema().Validate(*this, nullptr); }
 
 StatusOr<EvalOptions> ReadEvalOptions(const std::string& path,
                                       const std::vector<std::string>& overrides) {
-  std::string source;
-  BCOT_ASSIGN_OR_RETURN(const YAML::Node root, LoadConfigWithOverrides(path, overrides, &source));
-  EvalOptions options;
-  YamlMap map(root, source, "", StatusCode::kInvalidConfig);
-  BCOT_RETURN_IF_ERROR(map.GetOptional("layout", &options.layout));
-  BCOT_RETURN_IF_ERROR(map.GetOptional("rbot_variant", &options.rbot_variant));
-  BCOT_RETURN_IF_ERROR(map.GetOptional("rbot_poses", &options.rbot_poses));
-  BCOT_RETURN_IF_ERROR(map.GetOptional("reset_rotation_deg", &options.reset_rotation_deg));
-  BCOT_RETURN_IF_ERROR(map.GetOptional("reset_translation_mm", &options.reset_translation_mm));
-  if (map.Has("curve")) {
-    YamlMap curve(map.Node("curve"), source, "curve", StatusCode::kInvalidConfig);
-    BCOT_RETURN_IF_ERROR(curve.GetOptional("max_fraction_of_d", &options.curve.max_fraction_of_d));
-    BCOT_RETURN_IF_ERROR(curve.GetOptional("steps", &options.curve.steps));
-    BCOT_RETURN_IF_ERROR(curve.CheckNoUnknownKeys());
-  }
-  BCOT_RETURN_IF_ERROR(map.CheckNoUnknownKeys());
-  const Status valid = options.Validate();
-  if (!valid.ok()) return valid.WithContext(source);
-  return options;
+  return EvalOptionSchema().Read(path, overrides);
 }
 
-std::string FormatEvalOptions(const EvalOptions& o) {
-  return fmt::format("# bcot eval: fully resolved options (bcot " BCOT_VERSION
-                     ")\n"
-                     "layout: {}\nrbot_variant: {}\nrbot_poses: {}\nreset_rotation_deg: {}\n"
-                     "reset_translation_mm: {}\ncurve:\n  max_fraction_of_d: {}\n  steps: {}\n",
-                     FormatYamlString(o.layout), FormatYamlString(o.rbot_variant),
-                     FormatYamlString(o.rbot_poses), o.reset_rotation_deg, o.reset_translation_mm,
-                     o.curve.max_fraction_of_d, o.curve.steps);
+std::string FormatEvalOptions(const EvalOptions& options) {
+  return EvalOptionSchema().Emit(options,
+                                 {"bcot eval: fully resolved options (bcot " BCOT_VERSION ")"});
 }
 
 StatusOr<std::vector<BenchmarkSequence>> LoadBenchmark(const std::string& root,

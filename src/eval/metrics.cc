@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 
-#include "bcot/core/config_file.h"
 #include "bcot/core/se3.h"
 
 namespace bcot {
@@ -61,18 +60,23 @@ bool IsTrackingFailure(const FrameErrors& errors, double max_rotation_deg,
          !Passes(errors.translation_mm, max_translation_mm);
 }
 
-Status CurveOptions::Validate() const {
-  std::vector<std::string> violations;
-  if (!(max_fraction_of_d > 0.0 && max_fraction_of_d <= 10.0)) {
-    violations.push_back(
-        fmt::format("curve.max_fraction_of_d = {}, must be in (0, 10]", max_fraction_of_d));
-  }
-  if (steps < 1 || steps > 100000) {
-    violations.push_back(fmt::format("curve.steps = {}, must be in [1, 100000]", steps));
-  }
-  if (violations.empty()) return Status::Ok();
-  return Status::InvalidConfig(JoinMessages(violations));
+const OptionSchema<CurveOptions>& CurveOptionSchema() {
+  static const OptionSchema<CurveOptions>* const schema = [] {
+    auto* s = new OptionSchema<CurveOptions>();
+    s->Add(
+         "curve.max_fraction_of_d", [](auto& o) -> auto& { return o.max_fraction_of_d; }, "d",
+         "ADD success curve from 0 to this fraction of the diameter d")
+        .Range(LeftOpen(0, 10));
+    s->Add(
+         "curve.steps", [](auto& o) -> auto& { return o.steps; }, "",
+         "intervals on the threshold axis")
+        .Range(Closed(1, 100000));
+    return s;
+  }();
+  return *schema;
 }
+
+Status CurveOptions::Validate() const { return CurveOptionSchema().Validate(*this, nullptr); }
 
 MetricSummary Summarize(const std::vector<ScoredFrame>& frames, const CurveOptions& curve) {
   BCOT_CHECK(curve.Validate().ok());

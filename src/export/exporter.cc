@@ -9,7 +9,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bcot/core/camera.h"
-#include "bcot/core/config_file.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/image_io.h"
 #include "bcot/core/pose_io.h"
@@ -76,61 +75,69 @@ struct CameraExport {
 
 }  // namespace
 
-Status ExportOptions::Validate() const {
-  std::vector<std::string> violations;
-  if (frame_step < 1 || frame_step > 1000) {
-    violations.push_back(fmt::format("frame_step = {}, must be in [1, 1000]", frame_step));
-  }
-  if (!(image_scale > 0.0 && image_scale <= 1.0)) {
-    violations.push_back(fmt::format("image_scale = {}, must be in (0, 1]", image_scale));
-  }
-  for (size_t i = 0; i < cameras.size(); ++i) {
-    if (cameras[i].empty()) violations.push_back(fmt::format("cameras[{}] is empty", i));
-    for (size_t j = 0; j < i; ++j) {
-      if (cameras[i] == cameras[j]) {
-        violations.push_back(fmt::format("cameras[{}] = '{}' is listed twice", i, cameras[i]));
-      }
-    }
-  }
-  if (!scene.empty() && !FolderNameProblem(scene).empty()) {
-    violations.push_back(fmt::format("scene = '{}' {}", scene, FolderNameProblem(scene)));
-  }
-  if (!object.empty() && !FolderNameProblem(object).empty()) {
-    violations.push_back(fmt::format("object = '{}' {}", object, FolderNameProblem(object)));
-  }
-  if (violations.empty()) return Status::Ok();
-  return Status::InvalidConfig(JoinMessages(violations));
+namespace {
+
+// The rule a folder-name option breaks, or "" (an empty name keeps the default).
+std::string FolderNameRule(const std::string& name) {
+  const std::string problem = name.empty() ? "" : FolderNameProblem(name);
+  return problem.empty() ? "" : "must be a folder name (it " + problem + ")";
 }
+
+OptionSchema<ExportOptions>* BuildExportOptionSchema() {
+  auto* s = new OptionSchema<ExportOptions>();
+  s->Add(
+       "frame_step", [](auto& o) -> auto& { return o.frame_step; }, "frames",
+       "keep every n-th frame (60 -> 30 fps: 2)")
+      .Range(Closed(1, 1000));
+  s->Add(
+       "image_scale", [](auto& o) -> auto& { return o.image_scale; }, "",
+       "image scale factor (1280x1024 -> 640x512: 0.5); K follows Camera::Scaled")
+      .Range(LeftOpen(0, 1));
+  s->Add(
+       "cameras", [](auto& o) -> auto& { return o.cameras; }, "",
+       "rig cameras to export; [] = the first only (indoor), outdoor: <scene>_<camera> each")
+      .Check([](const ExportOptions& o) -> std::string {
+        for (size_t i = 0; i < o.cameras.size(); ++i) {
+          if (o.cameras[i].empty()) return fmt::format("must not hold an empty name ([{}])", i);
+          for (size_t j = 0; j < i; ++j) {
+            if (o.cameras[i] == o.cameras[j]) {
+              return fmt::format("must not list '{}' twice", o.cameras[i]);
+            }
+          }
+        }
+        return "";
+      });
+  s->Add(
+       "scene", [](auto& o) -> auto& { return o.scene; }, "",
+       "scene folder name; \"\" = the sequence folder's name")
+      .Check([](const ExportOptions& o) { return FolderNameRule(o.scene); });
+  s->Add(
+       "object", [](auto& o) -> auto& { return o.object; }, "",
+       "object name (model file and folder); \"\" = object.yaml's name")
+      .Check([](const ExportOptions& o) { return FolderNameRule(o.object); });
+  s->Add(
+      "overwrite", [](auto& o) -> auto& { return o.overwrite; }, "",
+      "replace an existing non-empty <scene>/<Object> folder");
+  return s;
+}
+
+}  // namespace
+
+const OptionSchema<ExportOptions>& ExportOptionSchema() {
+  static const OptionSchema<ExportOptions>* const schema = BuildExportOptionSchema();
+  return *schema;
+}
+
+Status ExportOptions::Validate() const { return ExportOptionSchema().Validate(*this, nullptr); }
 
 StatusOr<ExportOptions> ReadExportOptions(const std::string& path,
                                           const std::vector<std::string>& overrides) {
-  std::string source;
-  BCOT_ASSIGN_OR_RETURN(const YAML::Node root, LoadConfigWithOverrides(path, overrides, &source));
-  ExportOptions options;
-  YamlMap map(root, source, "", StatusCode::kInvalidConfig);
-  BCOT_RETURN_IF_ERROR(map.GetOptional("frame_step", &options.frame_step));
-  BCOT_RETURN_IF_ERROR(map.GetOptional("image_scale", &options.image_scale));
-  BCOT_RETURN_IF_ERROR(map.GetOptional("cameras", &options.cameras));
-  BCOT_RETURN_IF_ERROR(map.GetOptional("scene", &options.scene));
-  BCOT_RETURN_IF_ERROR(map.GetOptional("object", &options.object));
-  BCOT_RETURN_IF_ERROR(map.GetOptional("overwrite", &options.overwrite));
-  BCOT_RETURN_IF_ERROR(map.CheckNoUnknownKeys());
-  const Status valid = options.Validate();
-  if (!valid.ok()) return valid.WithContext(source);
-  return options;
+  return ExportOptionSchema().Read(path, overrides);
 }
 
-std::string FormatExportOptions(const ExportOptions& o) {
-  std::string cameras;
-  for (const std::string& camera : o.cameras) {
-    cameras += (cameras.empty() ? "" : ", ") + FormatYamlString(camera);
-  }
-  return fmt::format(
-      "# bcot export: fully resolved options (bcot " BCOT_VERSION
-      ")\n"
-      "frame_step: {}\nimage_scale: {}\ncameras: [{}]\nscene: {}\nobject: {}\noverwrite: {}\n",
-      o.frame_step, o.image_scale, cameras, FormatYamlString(o.scene), FormatYamlString(o.object),
-      o.overwrite ? "true" : "false");
+std::string FormatExportOptions(const ExportOptions& options) {
+  return ExportOptionSchema().Emit(options,
+                                   {"bcot export: fully resolved options (bcot " BCOT_VERSION ")"});
 }
 
 StatusOr<ExportSummary> ExportToBcot(const std::string& sequence_dir,

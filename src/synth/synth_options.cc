@@ -2,514 +2,327 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
-#include <filesystem>
-#include <functional>
-#include <sstream>
-#include <utility>
-
-#include "bcot/core/file_util.h"
-#include "bcot/core/yaml_util.h"
+#include <algorithm>
+#include <string>
 
 namespace bcot {
 namespace {
 
-// A violated rule of one field, e.g. {"motion.fps", "motion.fps = 0, must be > 0"}.
-struct Violation {
-  std::string field;
-  std::string message;
-};
-
-std::string FormatNumber(double value) { return fmt::format("{}", value); }
-
-class ViolationList {
- public:
-  void Add(const std::string& field, const std::string& value, const std::string& rule) {
-    list_.push_back({field, fmt::format("{} = {}, {}", field, value, rule)});
+// "must be a plain file name" unless `name` can be a file name (no folder, not "." or "..").
+std::string PlainFileName(const std::string& name, bool allow_empty) {
+  if (name.empty() && allow_empty) return "";
+  if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..") {
+    return allow_empty ? "must be a plain file name" : "must be a non-empty plain file name";
   }
-  // Closed range [lo, hi].
-  void InRange(const std::string& field, double value, double lo, double hi) {
-    if (!(value >= lo && value <= hi)) {
-      Add(field, FormatNumber(value),
-          fmt::format("must be in [{}, {}]", FormatNumber(lo), FormatNumber(hi)));
-    }
-  }
-  // Open range (lo, hi).
-  void InOpenRange(const std::string& field, double value, double lo, double hi) {
-    if (!(value > lo && value < hi)) {
-      Add(field, FormatNumber(value),
-          fmt::format("must be in ({}, {})", FormatNumber(lo), FormatNumber(hi)));
-    }
-  }
-  // (lo, hi].
-  void InLeftOpenRange(const std::string& field, double value, double lo, double hi) {
-    if (!(value > lo && value <= hi)) {
-      Add(field, FormatNumber(value),
-          fmt::format("must be in ({}, {}]", FormatNumber(lo), FormatNumber(hi)));
-    }
-  }
-  void Positive(const std::string& field, double value) {
-    if (!(value > 0.0 && std::isfinite(value))) Add(field, FormatNumber(value), "must be > 0");
-  }
-  void NonNegative(const std::string& field, double value) {
-    if (!(value >= 0.0 && std::isfinite(value))) Add(field, FormatNumber(value), "must be >= 0");
-  }
-  const std::vector<Violation>& list() const { return list_; }
-
- private:
-  std::vector<Violation> list_;
-};
-
-std::vector<Violation> CollectViolations(const SynthOptions& o) {
-  ViolationList v;
-  v.NonNegative("seed", o.seed);
-
-  const auto& ob = o.object;
-  v.InRange("object.size_mm", ob.size_mm, 0.0, 5000.0);
-  v.Positive("object.unit_to_mm", ob.unit_to_mm);
-  for (int i = 0; i < 3; ++i) {
-    v.InRange(fmt::format("object.color_rgb[{}]", i), ob.color_rgb[i], 0.0, 255.0);
-  }
-  v.InRange("object.diffuse", ob.diffuse, 0.0, 1.0);
-  v.InRange("object.specular", ob.specular, 0.0, 10.0);
-  v.InRange("object.shininess", ob.shininess, 1.0, 10000.0);
-  v.InRange("object.crease_angle_deg", ob.crease_angle_deg, 0.0, 180.0);
-  if (ob.name.find('/') != std::string::npos || ob.name == "." || ob.name == "..") {
-    v.Add("object.name", ob.name, "must be a plain file name");
-  }
-
-  const auto& c = o.cameras;
-  v.InRange("cameras.width", c.width, 16, 8192);
-  v.InRange("cameras.height", c.height, 16, 8192);
-  v.InOpenRange("cameras.hfov_deg", c.hfov_deg, 1.0, 170.0);
-  v.Positive("cameras.distance_mm", c.distance_mm);
-  v.InRange("cameras.elevation_deg", c.elevation_deg, -80.0, 80.0);
-  for (size_t i = 0; i < c.arc_angles_deg.size(); ++i) {
-    v.InOpenRange(fmt::format("cameras.arc_angles_deg[{}]", i), c.arc_angles_deg[i], 0.0, 180.0);
-  }
-  for (size_t i = 0; i < c.cone_angles_deg.size(); ++i) {
-    v.InOpenRange(fmt::format("cameras.cone_angles_deg[{}]", i), c.cone_angles_deg[i], 0.0, 120.0);
-  }
-  for (int i = 0; i < 5; ++i) {
-    v.InRange(fmt::format("cameras.distortion[{}]", i), c.distortion[i], -1.0, 1.0);
-  }
-  if (c.name_prefix.empty() || c.name_prefix.find('/') != std::string::npos) {
-    v.Add("cameras.name_prefix", "\"" + c.name_prefix + "\"",
-          "must be a non-empty plain file name");
-  }
-
-  const auto& m = o.motion;
-  if (m.mode != "free" && m.mode != "rotate" && m.mode != "rig") {
-    v.Add("motion.mode", m.mode, "must be one of free, rotate, rig");
-  }
-  v.InRange("motion.num_frames", m.num_frames, 1, 100000);
-  v.InLeftOpenRange("motion.fps", m.fps, 0.0, 10000.0);
-  v.InRange("motion.rotation_deg_per_frame", m.rotation_deg_per_frame, 0.0, 90.0);
-  v.InRange("motion.translation_mm_per_frame", m.translation_mm_per_frame, 0.0, 1000.0);
-  v.InRange("motion.speed_variation", m.speed_variation, 0.0, 0.9);
-  v.NonNegative("motion.workspace_radius_mm", m.workspace_radius_mm);
-  v.InRange("motion.frustum_margin_px", m.frustum_margin_px, 0.0, 1000.0);
-  v.InLeftOpenRange("motion.rig_max_rotation_deg", m.rig_max_rotation_deg, 0.0, 90.0);
-  v.InRange("motion.object_motion_scale", m.object_motion_scale, 0.0, 1.0);
-
-  const auto& b = o.background;
-  if (b.kinds.empty()) v.Add("background.kinds", "[]", "must list at least one kind");
-  int image_views = 0;
-  for (size_t i = 0; i < b.kinds.size(); ++i) {
-    const std::string& kind = b.kinds[i];
-    if (kind == "image") ++image_views;
-    if (kind != "plain" && kind != "cluttered" && kind != "image") {
-      v.Add(fmt::format("background.kinds[{}]", i), kind, "must be one of plain, cluttered, image");
-    }
-  }
-  if (image_views > 0 && b.images.empty()) {
-    v.Add("background.images", "[]", "must list at least one photo when a kind is image");
-  }
-  v.Positive("background.backdrop_distance_mm", b.backdrop_distance_mm);
-  v.NonNegative("background.ground_clearance_mm", b.ground_clearance_mm);
-  v.InRange("background.clutter_shapes", b.clutter_shapes, 0, 10000);
-  v.InRange("background.similar_color_fraction", b.similar_color_fraction, 0.0, 1.0);
-
-  const auto& d = o.distractors;
-  v.InRange("distractors.count", d.count, 0, 100);
-  v.Positive("distractors.size_min_mm", d.size_min_mm);
-  v.Positive("distractors.size_max_mm", d.size_max_mm);
-  if (d.size_max_mm < d.size_min_mm) {
-    v.Add("distractors.size_max_mm", FormatNumber(d.size_max_mm),
-          fmt::format("must be >= distractors.size_min_mm ({})", FormatNumber(d.size_min_mm)));
-  }
-  v.InRange("distractors.similar_color_fraction", d.similar_color_fraction, 0.0, 1.0);
-
-  const auto& l = o.light;
-  v.InRange("light.azimuth_deg", l.azimuth_deg, -360.0, 360.0);
-  v.InRange("light.elevation_deg", l.elevation_deg, -90.0, 90.0);
-  v.InRange("light.intensity", l.intensity, 0.0, 10.0);
-  v.InRange("light.ambient", l.ambient, 0.0, 10.0);
-  v.InRange("light.deg_per_frame", l.deg_per_frame, -90.0, 90.0);
-
-  const auto& r = o.render;
-  v.InRange("render.object_samples_per_axis", r.object_samples_per_axis, 1, 16);
-  v.InRange("render.background_samples_per_axis", r.background_samples_per_axis, 1, 8);
-  v.InRange("render.threads", r.threads, 0, 256);
-
-  const auto& s = o.sensor;
-  v.InLeftOpenRange("sensor.exposure", s.exposure, 0.0, 100.0);
-  v.InRange("sensor.gamma", s.gamma, 1.0, 4.0);
-  v.InRange("sensor.noise_sigma", s.noise_sigma, 0.0, 1.0);
-  v.InRange("sensor.shot_noise_gain", s.shot_noise_gain, 0.0, 1.0);
-  v.InRange("sensor.blur_sigma_px", s.blur_sigma_px, 0.0, 20.0);
-  v.InRange("sensor.motion_blur_subframes", s.motion_blur_subframes, 1, 64);
-  v.InLeftOpenRange("sensor.exposure_fraction", s.exposure_fraction, 0.0, 1.0);
-
-  v.InRange("init.rotation_deg", o.init.rotation_deg, 0.0, 180.0);
-  v.InRange("init.translation_mm", o.init.translation_mm, 0.0, 1e6);
-  return v.list();
+  return "";
 }
 
-std::string JoinViolations(const std::vector<std::string>& messages) {
-  std::string joined;
-  for (const std::string& message : messages) {
-    if (!joined.empty()) joined += "; ";
-    joined += message;
-  }
-  return joined;
+void DeclareObjectAndCameras(OptionSchema<SynthOptions>* s) {
+  s->Add(
+       "seed", [](auto& o) -> auto& { return o.seed; }, "",
+       "seed of every random choice (same options + seed = same output)")
+      .Range(NonNegative());
+  s->Add(
+       "object.mesh", [](auto& o) -> auto& { return o.object.mesh; }, "",
+       "mesh file (OBJ, PLY, OFF, STL); \"\" = the built-in trefoil-knot part")
+      .Path();
+  s->Add(
+       "object.name", [](auto& o) -> auto& { return o.object.name; }, "",
+       "object and model-file name; \"\" = the mesh file's stem")
+      .Check([](const SynthOptions& o) { return PlainFileName(o.object.name, true); });
+  s->Add(
+       "object.size_mm", [](auto& o) -> auto& { return o.object.size_mm; }, "mm",
+       "scale the mesh to this longest bounding-box side; 0 = use unit_to_mm")
+      .Range(Closed(0, 5000));
+  s->Add(
+       "object.unit_to_mm", [](auto& o) -> auto& { return o.object.unit_to_mm; }, "",
+       "mesh units to mm when size_mm = 0")
+      .Range(Positive());
+  s->Add(
+       "object.color_rgb", [](auto& o) -> auto& { return o.object.color_rgb; }, "sRGB",
+       "surface colour (textureless)")
+      .Range(Closed(0, 255));
+  s->Add(
+       "object.diffuse", [](auto& o) -> auto& { return o.object.diffuse; }, "",
+       "diffuse albedo multiplier")
+      .Range(Closed(0, 1));
+  s->Add(
+       "object.specular", [](auto& o) -> auto& { return o.object.specular; }, "",
+       "Blinn-Phong specular strength")
+      .Range(Closed(0, 10));
+  s->Add(
+       "object.shininess", [](auto& o) -> auto& { return o.object.shininess; }, "",
+       "Blinn-Phong exponent: larger = smaller, sharper highlights")
+      .Range(Closed(1, 10000));
+  s->Add(
+       "object.crease_angle_deg", [](auto& o) -> auto& { return o.object.crease_angle_deg; }, "deg",
+       "normals are averaged across edges below this dihedral angle (0 = flat)")
+      .Range(Closed(0, 180));
+  s->Add(
+       "cameras.width", [](auto& o) -> auto& { return o.cameras.width; }, "px",
+       "image width of every camera")
+      .Range(Closed(16, 8192));
+  s->Add(
+       "cameras.height", [](auto& o) -> auto& { return o.cameras.height; }, "px",
+       "image height of every camera")
+      .Range(Closed(16, 8192));
+  s->Add(
+       "cameras.hfov_deg", [](auto& o) -> auto& { return o.cameras.hfov_deg; }, "deg",
+       "horizontal field of view")
+      .Range(Open(1, 170));
+  s->Add(
+       "cameras.distance_mm", [](auto& o) -> auto& { return o.cameras.distance_mm; }, "mm",
+       "distance of every camera centre to the target point")
+      .Range(Positive());
+  s->Add(
+       "cameras.elevation_deg", [](auto& o) -> auto& { return o.cameras.elevation_deg; }, "deg",
+       "elevation of C-0 above the horizontal plane through the target")
+      .Range(Closed(-80, 80));
+  s->Add(
+       "cameras.arc_angles_deg", [](auto& o) -> auto& { return o.cameras.arc_angles_deg; }, "deg",
+       "one camera per entry on the arc through C-0, at this angle to C-0")
+      .Range(Open(0, 180));
+  s->Add(
+       "cameras.cone_angles_deg", [](auto& o) -> auto& { return o.cameras.cone_angles_deg; }, "deg",
+       "one out-of-plane cone camera per entry, at this angle to C-0 and the arc")
+      .Range(Open(0, 120));
+  s->Add(
+       "cameras.distortion", [](auto& o) -> auto& { return o.cameras.distortion; }, "",
+       "OpenCV distortion k1, k2, p1, p2, k3 of every camera")
+      .Range(Closed(-1, 1));
+  s->Add(
+       "cameras.name_prefix", [](auto& o) -> auto& { return o.cameras.name_prefix; }, "",
+       "camera names are this prefix + index")
+      .Check([](const SynthOptions& o) { return PlainFileName(o.cameras.name_prefix, false); });
 }
 
-// The node of "section.key[3]" in `root` (index suffix ignored), or an invalid node.
-YAML::Node FindField(const YAML::Node& root, const std::string& field) {
-  std::string path = field.substr(0, field.find('['));
-  // Node::reset rebinds a handle; operator= would overwrite the referenced node in the tree.
-  YAML::Node node;
-  node.reset(root);
-  std::stringstream parts(path);
-  std::string part;
-  while (std::getline(parts, part, '.')) {
-    if (!node.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
-    bool found = false;
-    YAML::Node child;
-    for (const auto& entry : node) {
-      if (entry.first.IsScalar() && entry.first.Scalar() == part) {
-        child.reset(entry.second);
-        found = true;
-      }
-    }
-    if (!found) return YAML::Node(YAML::NodeType::Undefined);
-    node.reset(child);
-  }
-  return node;
+void DeclareMotionAndBackground(OptionSchema<SynthOptions>* s) {
+  s->Add(
+       "motion.mode", [](auto& o) -> auto& { return o.motion.mode; }, "",
+       "free: object moves; rotate: object rotates in place; rig: the rig moves")
+      .OneOf({"free", "rotate", "rig"});
+  s->Add(
+       "motion.num_frames", [](auto& o) -> auto& { return o.motion.num_frames; }, "",
+       "number of frames")
+      .Range(Closed(1, 100000));
+  s->Add(
+       "motion.fps", [](auto& o) -> auto& { return o.motion.fps; }, "Hz",
+       "frame rate for timestamps.csv")
+      .Range(LeftOpen(0, 10000));
+  s->Add(
+       "motion.rotation_deg_per_frame",
+       [](auto& o) -> auto& { return o.motion.rotation_deg_per_frame; }, "deg",
+       "mean rotation speed")
+      .Range(Closed(0, 90));
+  s->Add(
+       "motion.translation_mm_per_frame",
+       [](auto& o) -> auto& { return o.motion.translation_mm_per_frame; }, "mm",
+       "mean translation speed")
+      .Range(Closed(0, 1000));
+  s->Add(
+       "motion.speed_variation", [](auto& o) -> auto& { return o.motion.speed_variation; }, "",
+       "relative amplitude of the smooth speed modulation")
+      .Range(Closed(0, 0.9));
+  s->Add(
+       "motion.workspace_radius_mm", [](auto& o) -> auto& { return o.motion.workspace_radius_mm; },
+       "mm", "ball the object centre stays in; 0 = the largest that keeps it in every view")
+      .Range(NonNegative());
+  s->Add(
+       "motion.frustum_margin_px", [](auto& o) -> auto& { return o.motion.frustum_margin_px; },
+       "px", "margin the object keeps to every image border")
+      .Range(Closed(0, 1000));
+  s->Add(
+       "motion.rig_max_rotation_deg",
+       [](auto& o) -> auto& { return o.motion.rig_max_rotation_deg; }, "deg",
+       "rig mode: largest pan of the rig about the look-at point")
+      .Range(LeftOpen(0, 90));
+  s->Add(
+       "motion.object_motion_scale", [](auto& o) -> auto& { return o.motion.object_motion_scale; },
+       "", "rig mode: object speeds relative to the rig's (0 = static object)")
+      .Range(Closed(0, 1));
+  s->Add(
+       "background.kinds", [](auto& o) -> auto& { return o.background.kinds; }, "",
+       "per view, cycled: plain, cluttered or image")
+      .OneOf({"plain", "cluttered", "image"})
+      .Check([](const SynthOptions& o) {
+        return o.background.kinds.empty() ? "must list at least one kind" : "";
+      });
+  s->Add(
+       "background.images", [](auto& o) -> auto& { return o.background.images; }, "",
+       "photos of the image views, cycled")
+      .Path()
+      .Check([](const SynthOptions& o) {
+        const auto& b = o.background;
+        const bool image_view = std::find(b.kinds.begin(), b.kinds.end(), "image") != b.kinds.end();
+        return image_view && b.images.empty() ? "must list at least one photo when a kind is image"
+                                              : "";
+      });
+  s->Add(
+       "background.backdrop_distance_mm",
+       [](auto& o) -> auto& { return o.background.backdrop_distance_mm; }, "mm",
+       "each view's backdrop plane lies this far behind the target")
+      .Range(Positive());
+  s->Add(
+      "background.ground", [](auto& o) -> auto& { return o.background.ground; }, "",
+      "a textured table plane below the workspace");
+  s->Add(
+       "background.ground_clearance_mm",
+       [](auto& o) -> auto& { return o.background.ground_clearance_mm; }, "mm",
+       "gap between the object's lowest reach and the table")
+      .Range(NonNegative());
+  s->Add(
+       "background.clutter_shapes", [](auto& o) -> auto& { return o.background.clutter_shapes; },
+       "", "random shapes on a cluttered backdrop")
+      .Range(Closed(0, 10000));
+  s->Add(
+       "background.similar_color_fraction",
+       [](auto& o) -> auto& { return o.background.similar_color_fraction; }, "",
+       "fraction of clutter shapes coloured close to the object")
+      .Range(Closed(0, 1));
 }
 
-std::string ResolvePath(const std::string& base_dir, const std::string& path) {
-  if (path.empty()) return path;
-  std::filesystem::path p(path);
-  if (p.is_absolute() || base_dir.empty()) return p.lexically_normal().string();
-  return (std::filesystem::path(base_dir) / p).lexically_normal().string();
+void DeclareSceneAndSensor(OptionSchema<SynthOptions>* s) {
+  s->Add(
+       "distractors.count", [](auto& o) -> auto& { return o.distractors.count; }, "",
+       "distractor objects in the world")
+      .Range(Closed(0, 100));
+  s->Add(
+       "distractors.meshes", [](auto& o) -> auto& { return o.distractors.meshes; }, "",
+       "meshes to draw them from, cycled; [] = built-in boxes, cylinders, ellipsoids")
+      .Path();
+  s->Add(
+       "distractors.size_min_mm", [](auto& o) -> auto& { return o.distractors.size_min_mm; }, "mm",
+       "smallest longest bounding-box side")
+      .Range(Positive());
+  s->Add(
+       "distractors.size_max_mm", [](auto& o) -> auto& { return o.distractors.size_max_mm; }, "mm",
+       "largest longest bounding-box side")
+      .Range(Positive())
+      .Check([](const SynthOptions& o) -> std::string {
+        const auto& d = o.distractors;
+        if (d.size_max_mm >= d.size_min_mm) return "";
+        return fmt::format("must be >= distractors.size_min_mm ({})", d.size_min_mm);
+      });
+  s->Add(
+      "distractors.allow_occlusion", [](auto& o) -> auto& { return o.distractors.allow_occlusion; },
+      "", "distractors may occlude the object partially");
+  s->Add(
+       "distractors.similar_color_fraction",
+       [](auto& o) -> auto& { return o.distractors.similar_color_fraction; }, "",
+       "fraction of distractors coloured close to the object")
+      .Range(Closed(0, 1));
+  s->Add(
+       "light.azimuth_deg", [](auto& o) -> auto& { return o.light.azimuth_deg; }, "deg",
+       "direction towards the light: azimuth about z")
+      .Range(Closed(-360, 360));
+  s->Add(
+       "light.elevation_deg", [](auto& o) -> auto& { return o.light.elevation_deg; }, "deg",
+       "... and elevation above the horizontal")
+      .Range(Closed(-90, 90));
+  s->Add(
+       "light.intensity", [](auto& o) -> auto& { return o.light.intensity; }, "",
+       "directional intensity")
+      .Range(Closed(0, 10));
+  s->Add(
+       "light.ambient", [](auto& o) -> auto& { return o.light.ambient; }, "", "ambient intensity")
+      .Range(Closed(0, 10));
+  s->Add(
+      "light.moves", [](auto& o) -> auto& { return o.light.moves; }, "",
+      "the light turns about z by deg_per_frame every frame");
+  s->Add(
+       "light.deg_per_frame", [](auto& o) -> auto& { return o.light.deg_per_frame; }, "deg",
+       "turn of a moving light per frame")
+      .Range(Closed(-90, 90));
+  s->Add(
+       "render.object_samples_per_axis",
+       [](auto& o) -> auto& { return o.render.object_samples_per_axis; }, "",
+       "n x n rays per pixel near the object (anti-aliasing)")
+      .Range(Closed(1, 16));
+  s->Add(
+       "render.background_samples_per_axis",
+       [](auto& o) -> auto& { return o.render.background_samples_per_axis; }, "",
+       "n x n background samples per pixel elsewhere")
+      .Range(Closed(1, 8));
+  s->Add(
+       "render.threads", [](auto& o) -> auto& { return o.render.threads; }, "",
+       "worker threads; 0 = all cores")
+      .Range(Closed(0, 256));
+  s->Add(
+       "sensor.exposure", [](auto& o) -> auto& { return o.sensor.exposure; }, "",
+       "linear radiance multiplier before noise and gamma")
+      .Range(LeftOpen(0, 100));
+  s->Add(
+       "sensor.gamma", [](auto& o) -> auto& { return o.sensor.gamma; }, "",
+       "display gamma of the 8-bit images (1 = linear)")
+      .Range(Closed(1, 4));
+  s->Add(
+       "sensor.noise_sigma", [](auto& o) -> auto& { return o.sensor.noise_sigma; }, "",
+       "Gaussian read noise, fraction of full scale")
+      .Range(Closed(0, 1));
+  s->Add(
+       "sensor.shot_noise_gain", [](auto& o) -> auto& { return o.sensor.shot_noise_gain; }, "",
+       "shot noise: variance += gain x signal")
+      .Range(Closed(0, 1));
+  s->Add(
+       "sensor.blur_sigma_px", [](auto& o) -> auto& { return o.sensor.blur_sigma_px; }, "px",
+       "Gaussian optical blur; 0 = off")
+      .Range(Closed(0, 20));
+  s->Add(
+       "sensor.motion_blur_subframes",
+       [](auto& o) -> auto& { return o.sensor.motion_blur_subframes; }, "",
+       "sub-frame renders averaged for motion blur; 1 = off")
+      .Range(Closed(1, 64));
+  s->Add(
+       "sensor.exposure_fraction", [](auto& o) -> auto& { return o.sensor.exposure_fraction; }, "",
+       "motion blur spans this fraction of the frame interval")
+      .Range(LeftOpen(0, 1));
+  s->Add(
+       "init.rotation_deg", [](auto& o) -> auto& { return o.init.rotation_deg; }, "deg",
+       "init_pose.txt = frame 0's truth turned by this about a random axis ...")
+      .Range(Closed(0, 180));
+  s->Add(
+       "init.translation_mm", [](auto& o) -> auto& { return o.init.translation_mm; }, "mm",
+       "... and moved by this in a random direction")
+      .Range(Closed(0, 1e6));
+  s->Add(
+      "output.write_coverage", [](auto& o) -> auto& { return o.output.write_coverage; }, "",
+      "also write gt/<camera>/coverage_XXXXXX.png (anti-aliased object coverage)");
 }
 
-Status ToConfigError(const Status& status) {
-  if (status.ok() || status.code() == StatusCode::kInvalidConfig) return status;
-  return Status::InvalidConfig(status.message());
-}
-
-// Reads a fixed-size numeric array when present.
-template <size_t N>
-Status GetArray(YamlMap& map, const std::string& key, std::array<double, N>* values) {
-  if (!map.Has(key)) return Status::Ok();
-  std::vector<double> read;
-  BCOT_RETURN_IF_ERROR(map.GetFixedArray(key, N, &read));
-  for (size_t i = 0; i < N; ++i) (*values)[i] = read[i];
-  return Status::Ok();
-}
-
-// Runs `parse` on root[section] when the section is present.
-Status ParseSection(YamlMap& root, const std::string& section,
-                    const std::function<Status(YamlMap&)>& parse) {
-  if (!root.Has(section)) return Status::Ok();
-  YamlMap map(root.Node(section), root.source_name(), section, StatusCode::kInvalidConfig);
-  BCOT_RETURN_IF_ERROR(map.Check());
-  BCOT_RETURN_IF_ERROR(parse(map));
-  return map.CheckNoUnknownKeys();
-}
-
-Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
-                 const std::string& base_dir, SynthOptions* o) {
-  if (!root_node.IsDefined() || root_node.IsNull()) return Status::Ok();  // empty file
-  YamlMap root(root_node, source_name, "", StatusCode::kInvalidConfig);
-  BCOT_RETURN_IF_ERROR(root.Check());
-  BCOT_RETURN_IF_ERROR(root.GetOptional("seed", &o->seed));
-
-  BCOT_RETURN_IF_ERROR(ParseSection(root, "object", [&](YamlMap& m) -> Status {
-    auto& s = o->object;
-    BCOT_RETURN_IF_ERROR(m.GetOptional("mesh", &s.mesh));
-    s.mesh = ResolvePath(base_dir, s.mesh);
-    BCOT_RETURN_IF_ERROR(m.GetOptional("name", &s.name));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("size_mm", &s.size_mm));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("unit_to_mm", &s.unit_to_mm));
-    BCOT_RETURN_IF_ERROR(GetArray(m, "color_rgb", &s.color_rgb));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("diffuse", &s.diffuse));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("specular", &s.specular));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("shininess", &s.shininess));
-    return m.GetOptional("crease_angle_deg", &s.crease_angle_deg);
-  }));
-
-  BCOT_RETURN_IF_ERROR(ParseSection(root, "cameras", [&](YamlMap& m) -> Status {
-    auto& s = o->cameras;
-    BCOT_RETURN_IF_ERROR(m.GetOptional("width", &s.width));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("height", &s.height));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("hfov_deg", &s.hfov_deg));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("distance_mm", &s.distance_mm));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("elevation_deg", &s.elevation_deg));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("arc_angles_deg", &s.arc_angles_deg));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("cone_angles_deg", &s.cone_angles_deg));
-    BCOT_RETURN_IF_ERROR(GetArray(m, "distortion", &s.distortion));
-    return m.GetOptional("name_prefix", &s.name_prefix);
-  }));
-
-  BCOT_RETURN_IF_ERROR(ParseSection(root, "motion", [&](YamlMap& m) -> Status {
-    auto& s = o->motion;
-    BCOT_RETURN_IF_ERROR(m.GetOptional("mode", &s.mode));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("num_frames", &s.num_frames));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("fps", &s.fps));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("rotation_deg_per_frame", &s.rotation_deg_per_frame));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("translation_mm_per_frame", &s.translation_mm_per_frame));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("speed_variation", &s.speed_variation));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("workspace_radius_mm", &s.workspace_radius_mm));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("frustum_margin_px", &s.frustum_margin_px));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("rig_max_rotation_deg", &s.rig_max_rotation_deg));
-    return m.GetOptional("object_motion_scale", &s.object_motion_scale);
-  }));
-
-  BCOT_RETURN_IF_ERROR(ParseSection(root, "background", [&](YamlMap& m) -> Status {
-    auto& s = o->background;
-    BCOT_RETURN_IF_ERROR(m.GetOptional("kinds", &s.kinds));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("images", &s.images));
-    for (std::string& image : s.images) image = ResolvePath(base_dir, image);
-    BCOT_RETURN_IF_ERROR(m.GetOptional("backdrop_distance_mm", &s.backdrop_distance_mm));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("ground", &s.ground));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("ground_clearance_mm", &s.ground_clearance_mm));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("clutter_shapes", &s.clutter_shapes));
-    return m.GetOptional("similar_color_fraction", &s.similar_color_fraction);
-  }));
-
-  BCOT_RETURN_IF_ERROR(ParseSection(root, "distractors", [&](YamlMap& m) -> Status {
-    auto& s = o->distractors;
-    BCOT_RETURN_IF_ERROR(m.GetOptional("count", &s.count));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("meshes", &s.meshes));
-    for (std::string& mesh : s.meshes) mesh = ResolvePath(base_dir, mesh);
-    BCOT_RETURN_IF_ERROR(m.GetOptional("size_min_mm", &s.size_min_mm));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("size_max_mm", &s.size_max_mm));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("allow_occlusion", &s.allow_occlusion));
-    return m.GetOptional("similar_color_fraction", &s.similar_color_fraction);
-  }));
-
-  BCOT_RETURN_IF_ERROR(ParseSection(root, "light", [&](YamlMap& m) -> Status {
-    auto& s = o->light;
-    BCOT_RETURN_IF_ERROR(m.GetOptional("azimuth_deg", &s.azimuth_deg));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("elevation_deg", &s.elevation_deg));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("intensity", &s.intensity));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("ambient", &s.ambient));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("moves", &s.moves));
-    return m.GetOptional("deg_per_frame", &s.deg_per_frame);
-  }));
-
-  BCOT_RETURN_IF_ERROR(ParseSection(root, "render", [&](YamlMap& m) -> Status {
-    auto& s = o->render;
-    BCOT_RETURN_IF_ERROR(m.GetOptional("object_samples_per_axis", &s.object_samples_per_axis));
-    BCOT_RETURN_IF_ERROR(
-        m.GetOptional("background_samples_per_axis", &s.background_samples_per_axis));
-    return m.GetOptional("threads", &s.threads);
-  }));
-
-  BCOT_RETURN_IF_ERROR(ParseSection(root, "sensor", [&](YamlMap& m) -> Status {
-    auto& s = o->sensor;
-    BCOT_RETURN_IF_ERROR(m.GetOptional("exposure", &s.exposure));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("gamma", &s.gamma));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("noise_sigma", &s.noise_sigma));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("shot_noise_gain", &s.shot_noise_gain));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("blur_sigma_px", &s.blur_sigma_px));
-    BCOT_RETURN_IF_ERROR(m.GetOptional("motion_blur_subframes", &s.motion_blur_subframes));
-    return m.GetOptional("exposure_fraction", &s.exposure_fraction);
-  }));
-
-  BCOT_RETURN_IF_ERROR(ParseSection(root, "init", [&](YamlMap& m) -> Status {
-    BCOT_RETURN_IF_ERROR(m.GetOptional("rotation_deg", &o->init.rotation_deg));
-    return m.GetOptional("translation_mm", &o->init.translation_mm);
-  }));
-
-  BCOT_RETURN_IF_ERROR(ParseSection(root, "output", [&](YamlMap& m) -> Status {
-    return m.GetOptional("write_coverage", &o->output.write_coverage);
-  }));
-
-  return root.CheckNoUnknownKeys();
-}
-
-// YAML scalar text for a string: always double-quoted so names like "no" or "1" stay strings.
-std::string Quote(const std::string& text) {
-  std::string quoted = "\"";
-  for (char ch : text) {
-    if (ch == '"' || ch == '\\') quoted += '\\';
-    quoted += ch;
-  }
-  return quoted + "\"";
-}
-
-std::string Bool(bool value) { return value ? "true" : "false"; }
-
-template <typename Container>
-std::string NumberList(const Container& values) {
-  std::string text = "[";
-  for (size_t i = 0; i < values.size(); ++i) {
-    if (i > 0) text += ", ";
-    text += FormatNumber(values[i]);
-  }
-  return text + "]";
-}
-
-std::string StringList(const std::vector<std::string>& values) {
-  std::string text = "[";
-  for (size_t i = 0; i < values.size(); ++i) {
-    if (i > 0) text += ", ";
-    text += Quote(values[i]);
-  }
-  return text + "]";
+OptionSchema<SynthOptions>* BuildSynthOptionSchema() {
+  auto* s = new OptionSchema<SynthOptions>();
+  DeclareObjectAndCameras(s);
+  DeclareMotionAndBackground(s);
+  DeclareSceneAndSensor(s);
+  return s;
 }
 
 }  // namespace
 
-Status SynthOptions::Validate() const {
-  std::vector<std::string> messages;
-  for (const Violation& violation : CollectViolations(*this)) {
-    messages.push_back(violation.message);
-  }
-  if (messages.empty()) return Status::Ok();
-  return Status::InvalidConfig(JoinViolations(messages));
+const OptionSchema<SynthOptions>& SynthOptionSchema() {
+  static const OptionSchema<SynthOptions>* const schema = BuildSynthOptionSchema();
+  return *schema;
 }
+
+Status SynthOptions::Validate() const { return SynthOptionSchema().Validate(*this, nullptr); }
 
 StatusOr<SynthOptions> ParseSynthOptions(const YAML::Node& root, const std::string& source_name,
                                          const std::string& base_dir) {
   SynthOptions options;
-  Status status = ParseInto(root, source_name, base_dir, &options);
-  if (!status.ok()) return ToConfigError(status);
-  std::vector<std::string> messages;
-  for (const Violation& violation : CollectViolations(options)) {
-    const YAML::Node node = FindField(root, violation.field);
-    const std::string where =
-        node.IsDefined() ? YamlWhere(source_name, node) : source_name + " (default)";
-    messages.push_back(where + ": " + violation.message);
-  }
-  if (!messages.empty()) return Status::InvalidConfig(JoinViolations(messages));
+  OptionSources sources;
+  BCOT_RETURN_IF_ERROR(SynthOptionSchema().Parse(root, source_name, base_dir, &options, &sources));
+  BCOT_RETURN_IF_ERROR(SynthOptionSchema().Validate(options, &sources));
   return options;
 }
 
 StatusOr<SynthOptions> ReadSynthOptions(const std::string& path,
                                         const std::vector<std::string>& overrides) {
-  YAML::Node node(YAML::NodeType::Map);
-  if (!path.empty()) {
-    if (!std::filesystem::exists(path)) {
-      return Status::InvalidConfig(fmt::format("{}: config file not found", path));
-    }
-    StatusOr<YAML::Node> root = LoadYamlFile(path, StatusCode::kInvalidConfig);
-    if (!root.ok()) return ToConfigError(root.status());
-    node = *root;
-  }
-  if (!overrides.empty()) {
-    if (!node.IsDefined() || node.IsNull()) node = YAML::Node(YAML::NodeType::Map);
-    Status status = ApplyYamlOverrides(overrides, &node);
-    if (!status.ok()) return ToConfigError(status);
-  }
-  if (path.empty()) return ParseSynthOptions(node, "--set", "");
-  const std::string base_dir = std::filesystem::path(path).parent_path().string();
-  return ParseSynthOptions(node, path, base_dir);
+  return SynthOptionSchema().Read(path, overrides);
 }
 
-std::string FormatSynthOptions(const SynthOptions& o) {
-  std::string y;
-  auto line = [&y](const std::string& key, const std::string& value) {
-    y += "  " + key + ": " + value + "\n";
-  };
-  y += "# bcot synth: fully resolved options (bcot " BCOT_VERSION ")\n";
-  y += "seed: " + std::to_string(o.seed) + "\n";
-
-  y += "object:\n";
-  line("mesh", Quote(o.object.mesh));
-  line("name", Quote(o.object.name));
-  line("size_mm", FormatNumber(o.object.size_mm));
-  line("unit_to_mm", FormatNumber(o.object.unit_to_mm));
-  line("color_rgb", NumberList(o.object.color_rgb));
-  line("diffuse", FormatNumber(o.object.diffuse));
-  line("specular", FormatNumber(o.object.specular));
-  line("shininess", FormatNumber(o.object.shininess));
-  line("crease_angle_deg", FormatNumber(o.object.crease_angle_deg));
-
-  y += "cameras:\n";
-  line("width", std::to_string(o.cameras.width));
-  line("height", std::to_string(o.cameras.height));
-  line("hfov_deg", FormatNumber(o.cameras.hfov_deg));
-  line("distance_mm", FormatNumber(o.cameras.distance_mm));
-  line("elevation_deg", FormatNumber(o.cameras.elevation_deg));
-  line("arc_angles_deg", NumberList(o.cameras.arc_angles_deg));
-  line("cone_angles_deg", NumberList(o.cameras.cone_angles_deg));
-  line("distortion", NumberList(o.cameras.distortion));
-  line("name_prefix", Quote(o.cameras.name_prefix));
-
-  y += "motion:\n";
-  line("mode", Quote(o.motion.mode));
-  line("num_frames", std::to_string(o.motion.num_frames));
-  line("fps", FormatNumber(o.motion.fps));
-  line("rotation_deg_per_frame", FormatNumber(o.motion.rotation_deg_per_frame));
-  line("translation_mm_per_frame", FormatNumber(o.motion.translation_mm_per_frame));
-  line("speed_variation", FormatNumber(o.motion.speed_variation));
-  line("workspace_radius_mm", FormatNumber(o.motion.workspace_radius_mm));
-  line("frustum_margin_px", FormatNumber(o.motion.frustum_margin_px));
-  line("rig_max_rotation_deg", FormatNumber(o.motion.rig_max_rotation_deg));
-  line("object_motion_scale", FormatNumber(o.motion.object_motion_scale));
-
-  y += "background:\n";
-  line("kinds", StringList(o.background.kinds));
-  line("images", StringList(o.background.images));
-  line("backdrop_distance_mm", FormatNumber(o.background.backdrop_distance_mm));
-  line("ground", Bool(o.background.ground));
-  line("ground_clearance_mm", FormatNumber(o.background.ground_clearance_mm));
-  line("clutter_shapes", std::to_string(o.background.clutter_shapes));
-  line("similar_color_fraction", FormatNumber(o.background.similar_color_fraction));
-
-  y += "distractors:\n";
-  line("count", std::to_string(o.distractors.count));
-  line("meshes", StringList(o.distractors.meshes));
-  line("size_min_mm", FormatNumber(o.distractors.size_min_mm));
-  line("size_max_mm", FormatNumber(o.distractors.size_max_mm));
-  line("allow_occlusion", Bool(o.distractors.allow_occlusion));
-  line("similar_color_fraction", FormatNumber(o.distractors.similar_color_fraction));
-
-  y += "light:\n";
-  line("azimuth_deg", FormatNumber(o.light.azimuth_deg));
-  line("elevation_deg", FormatNumber(o.light.elevation_deg));
-  line("intensity", FormatNumber(o.light.intensity));
-  line("ambient", FormatNumber(o.light.ambient));
-  line("moves", Bool(o.light.moves));
-  line("deg_per_frame", FormatNumber(o.light.deg_per_frame));
-
-  y += "render:\n";
-  line("object_samples_per_axis", std::to_string(o.render.object_samples_per_axis));
-  line("background_samples_per_axis", std::to_string(o.render.background_samples_per_axis));
-  line("threads", std::to_string(o.render.threads));
-
-  y += "sensor:\n";
-  line("exposure", FormatNumber(o.sensor.exposure));
-  line("gamma", FormatNumber(o.sensor.gamma));
-  line("noise_sigma", FormatNumber(o.sensor.noise_sigma));
-  line("shot_noise_gain", FormatNumber(o.sensor.shot_noise_gain));
-  line("blur_sigma_px", FormatNumber(o.sensor.blur_sigma_px));
-  line("motion_blur_subframes", std::to_string(o.sensor.motion_blur_subframes));
-  line("exposure_fraction", FormatNumber(o.sensor.exposure_fraction));
-
-  y += "init:\n";
-  line("rotation_deg", FormatNumber(o.init.rotation_deg));
-  line("translation_mm", FormatNumber(o.init.translation_mm));
-
-  y += "output:\n";
-  line("write_coverage", Bool(o.output.write_coverage));
-  return y;
+std::string FormatSynthOptions(const SynthOptions& options) {
+  return SynthOptionSchema().Emit(options,
+                                  {"bcot synth: fully resolved options (bcot " BCOT_VERSION ")"});
 }
 
 }  // namespace bcot

@@ -79,12 +79,14 @@ TEST(AnnotateOptionsTest, QualitySectionRoundTripsAndIsValidated) {
   const StatusOr<AnnotateOptions> unknown = ParseText("quality:\n  treshold_px: 1\n");
   EXPECT_THAT(unknown.status().message(), HasSubstr("run.yaml:2"));
   EXPECT_THAT(unknown.status().message(), HasSubstr("treshold_px"));
-  // --set overrides: same checks, named by key (an override has no line).
+  // --set overrides: same checks, named by `--set key` (not by the config file).
   const StatusOr<AnnotateOptions> set = ReadAnnotateOptions(
       test::SourcePath("configs/annotate.yaml"), {"quality.search_radius_px=0"});
   ASSERT_EQ(set.status().code(), StatusCode::kInvalidConfig);
-  EXPECT_THAT(set.status().message(), HasSubstr("annotate.yaml"));
-  EXPECT_THAT(set.status().message(), HasSubstr("quality.search_radius_px = 0, must be > 0"));
+  EXPECT_THAT(set.status().message(), HasSubstr("--set quality.search_radius_px = 0, must be > 0"));
+  const StatusOr<AnnotateOptions> set_type =
+      ReadAnnotateOptions(test::SourcePath("configs/track.yaml"), {"frame.rounds=abc"});
+  EXPECT_EQ(set_type.status().message(), "--set frame.rounds: expected an integer, got 'abc'");
   const StatusOr<AnnotateOptions> type = ReadAnnotateOptions("", {"quality.threshold_px=[1, 2]"});
   ASSERT_EQ(type.status().code(), StatusCode::kInvalidConfig);
   EXPECT_THAT(type.status().message(), HasSubstr("quality.threshold_px"));
@@ -103,6 +105,12 @@ TEST(AnnotateOptionsTest, UnknownKeyNamesFileLineAndKey) {
   const StatusOr<AnnotateOptions> section = ParseText("solver:\n  rounds: 2\n");
   ASSERT_EQ(section.status().code(), StatusCode::kInvalidConfig);
   EXPECT_THAT(section.status().message(), HasSubstr("solver"));
+  // Every section is known, not only those present in the file (track.yaml has four).
+  const StatusOr<AnnotateOptions> typo =
+      ReadAnnotateOptions(test::SourcePath("configs/track.yaml"), {"windoww.size=3"});
+  EXPECT_THAT(typo.status().message(),
+              HasSubstr("--set windoww: unknown key (did you mean 'window'?); known keys: color, "
+                        "cost, frame, lines, quality, region, tracker, views, window"));
 }
 
 TEST(AnnotateOptionsTest, OutOfRangeValuesNameTheirLineAndKey) {

@@ -26,9 +26,11 @@
 //                                     [x, y, z], translation_sigma_mm [x, y, z],
 //                                     robust_translation_mm, robust_rotation_deg, num_threads
 //
-// Unknown keys, wrong types and out-of-range values are kInvalidConfig errors naming
-// file:line: section.key. configs/annotate.yaml is the annotation setting (5 rounds × 7
-// iterations), configs/track.yaml the tracking setting (1 round). FormatAnnotateOptions writes
+// Every option is declared once in AnnotateOptionSchema() (key, field, unit, rule, help; see
+// bcot/core/option_schema.h): unknown keys, wrong types and out-of-range values are
+// kInvalidConfig errors naming file:line: section.key (or `--set section.key`), and
+// `bcot annotate --help` lists them. configs/annotate.yaml is the annotation setting (5 rounds ×
+// 7 iterations), configs/track.yaml the tracking setting (1 round). FormatAnnotateOptions writes
 // every option; reading it back gives the same options.
 #pragma once
 
@@ -37,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "bcot/core/option_schema.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/multi_view_tracker.h"
 #include "bcot/optim/window_problem.h"
@@ -57,15 +60,19 @@ struct AnnotateOptions {
   QualityOptions quality;
   // The temporal smoothing window after the per-frame solves (off unless enabled).
   WindowProblemOptions window;
-  // Lists every violation in one kInvalidConfig status.
+  // Lists every violation of the declared rules in one kInvalidConfig status, then the optim
+  // layer's own checks.
   Status Validate() const;
 };
+
+// The declaration of every option above (sections as listed at the top). Built once.
+const OptionSchema<AnnotateOptions>& AnnotateOptionSchema();
 
 // Parses a YAML document (keys absent keep their defaults). `source_name` names the file in
 // messages.
 StatusOr<AnnotateOptions> ParseAnnotateOptions(const YAML::Node& root,
                                                const std::string& source_name);
-// Reads `path` (empty = defaults) and applies `--set section.key=value` overrides first.
+// Reads `path` (empty = defaults), then applies `--set section.key=value` overrides on top.
 StatusOr<AnnotateOptions> ReadAnnotateOptions(const std::string& path,
                                               const std::vector<std::string>& overrides);
 // Every option as YAML (sections as above), readable by ParseAnnotateOptions.

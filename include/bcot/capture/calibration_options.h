@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bcot/core/option_schema.h"
 #include "bcot/core/status.h"
 
 namespace bcot {
@@ -61,13 +62,18 @@ struct CalibrationOptions {
     bool drop = false;
   } outliers;
 
-  // Lists every violation ("board.square_size_mm = 0, must be > 0"), kInvalidConfig.
+  // Lists every violation ("board.square_size_mm = 0, must be > 0"), kInvalidConfig: the
+  // rules of CalibrationOptionSchema().
   Status Validate() const;
 };
 
+// The declaration of every option above (configs/calibrate.yaml). Built once.
+const OptionSchema<CalibrationOptions>& CalibrationOptionSchema();
+
 // Reads a config file strictly (unknown or duplicate keys are errors naming file:line:key),
-// applies `overrides` ("section.key=value"), resolves input.images_dir against the config
-// file's directory and validates. Empty `path` = defaults plus overrides.
+// resolves input.images_dir against the config file's directory, applies `overrides`
+// ("section.key=value"; errors name `--set key`) and validates. Empty `path` = defaults plus
+// overrides.
 StatusOr<CalibrationOptions> ReadCalibrationOptions(const std::string& path,
                                                     const std::vector<std::string>& overrides = {});
 

@@ -20,6 +20,13 @@
 
 namespace bcot {
 
+// The source name of values given on the command line (`--set`): messages about them read
+// "--set frame.rounds: ..." instead of "file:line: frame.rounds: ...".
+inline constexpr const char kCommandLineSource[] = "--set";
+
+// "location: key.path", or "--set key.path" when `location` is kCommandLineSource.
+std::string JoinWhere(const std::string& location, const std::string& key_path);
+
 // Parses YAML text; a syntax error names source:line. More than one document is an error;
 // an empty text gives a Null node. `code` is the StatusCode of syntax errors.
 StatusOr<YAML::Node> ParseYaml(const std::string& text, const std::string& source_name,

@@ -36,12 +36,16 @@ struct EvalOptions {
   double reset_rotation_deg = 5.0;
   double reset_translation_mm = 50.0;
   CurveOptions curve;
-  // Lists every violation (kInvalidConfig).
+  // Lists every violation of EvalOptionSchema()'s rules (kInvalidConfig).
   Status Validate() const;
 };
 
+// The declaration of every option above (configs/eval.yaml; `curve` is a section).
+const OptionSchema<EvalOptions>& EvalOptionSchema();
+
 // Strict YAML (unknown keys are errors naming file:line); `overrides` ("key=value",
-// "curve.steps=50") are applied first; an empty path = defaults + overrides. kInvalidConfig.
+// "curve.steps=50"; errors name `--set key`) are applied on top; an empty path = defaults +
+// overrides. kInvalidConfig.
 StatusOr<EvalOptions> ReadEvalOptions(const std::string& path,
                                       const std::vector<std::string>& overrides = {});
 // Every field as YAML; reads back to the same options.

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bcot/core/option_schema.h"
 #include "bcot/core/status.h"
 
 namespace bcot {
@@ -60,6 +61,9 @@ struct CurveOptions {
   int steps = 100;                 // intervals on the axis; [1, 100000]
   Status Validate() const;         // kInvalidConfig listing every violation
 };
+
+// The declaration of the options above: the `curve:` section of configs/eval.yaml.
+const OptionSchema<CurveOptions>& CurveOptionSchema();
 
 // The columns of the paper's Table 6, in order, with their headings.
 inline constexpr int kNumMetricColumns = 10;

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "bcot/core/option_schema.h"
 #include "bcot/core/status.h"
 
 namespace bcot {
@@ -46,9 +47,12 @@ struct ExportOptions {
   // An existing non-empty <scene>/<Object> folder is an error unless true; then it is removed
   // first (so no stale frames survive).
   bool overwrite = false;
-  // Lists every violation (kInvalidConfig).
+  // Lists every violation of ExportOptionSchema()'s rules (kInvalidConfig).
   Status Validate() const;
 };
+
+// The declaration of every option above (configs/export.yaml keys are the field names).
+const OptionSchema<ExportOptions>& ExportOptionSchema();
 
 StatusOr<ExportOptions> ReadExportOptions(const std::string& path,
                                           const std::vector<std::string>& overrides = {});

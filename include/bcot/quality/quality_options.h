@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "bcot/core/option_schema.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/color_model.h"
 #include "bcot/render/ray_caster.h"
@@ -56,18 +57,23 @@ struct QualityOptions {
   // Longest side of a thumbnail (px); >= 32.
   int thumbnail_px = 320;
 
-  // Lists every violation (field, value, rule) in one kInvalidConfig status.
+  // Lists every violation ("quality.key = value, rule") in one kInvalidConfig status: the
+  // rules of QualityOptionSchema().
   Status Validate() const;
 };
+
+// The declaration of every option above: the `quality:` section of the annotate config (keys
+// spelled as the fields, "quality.threshold_px"). Built once.
+const OptionSchema<QualityOptions>& QualityOptionSchema();
 
 const char* QualityStatisticName(QualityStatistic statistic);
 
 // The contour sampling of the quality measurement (one point every sample_spacing_px).
 ContourOptions QualityContourOptions(const QualityOptions& options);
 
-// The `quality:` YAML section (keys spelled as the fields; statistic: median | p90).
-// Unknown keys, wrong types and out-of-range values are kInvalidConfig errors naming
-// file:line: quality.key. `node` may be undefined (defaults kept).
+// The `quality:` YAML section `node` (may be undefined: defaults kept), by QualityOptionSchema:
+// unknown keys, wrong types and out-of-range values are kInvalidConfig errors naming
+// file:line: quality.key.
 Status ParseQualityOptions(const YAML::Node& node, const std::string& source_name,
                            QualityOptions* options);
 // The section as YAML lines ("quality:\n  threshold_px: 2\n..."), readable by the parser.

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bcot/core/option_schema.h"
 #include "bcot/core/status.h"
 
 namespace bcot {
@@ -187,15 +188,19 @@ struct SynthOptions {
     bool write_coverage = false;
   } output;
 
-  // Lists every violation as "field = value, rule", joined by "; " (kInvalidConfig).
+  // Lists every violation as "field = value, rule", joined by "; " (kInvalidConfig): the rules
+  // of SynthOptionSchema().
   Status Validate() const;
 };
 
+// The declaration of every option above (key, field, unit, rule, help). Built once.
+const OptionSchema<SynthOptions>& SynthOptionSchema();
+
 // Reads a config file strictly (unknown or duplicate keys are errors naming file:line:key),
-// applies `overrides` ("section.key=value", YAML values) first, resolves paths against the
-// config file's directory and validates. Missing sections and keys keep their defaults; an
-// empty `path` means the defaults plus `overrides` (paths in overrides are then relative to
-// the working directory).
+// resolves its paths against the config file's directory, applies `overrides`
+// ("section.key=value", YAML values; errors name `--set key`, paths are relative to the working
+// directory) on top and validates. Missing sections and keys keep their defaults; an empty
+// `path` means the defaults plus `overrides`.
 StatusOr<SynthOptions> ReadSynthOptions(const std::string& path,
                                         const std::vector<std::string>& overrides = {});
 
