@@ -7,11 +7,13 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "bcot/annotate/annotator.h"
 #include "bcot/annotate/done_file.h"
@@ -39,7 +41,9 @@ class SequenceLog {
     if (!file_) return;
     const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
     char stamp[32];
-    std::strftime(stamp, sizeof(stamp), "%Y-%m-%d %H:%M:%S", std::localtime(&now));
+    std::tm local{};
+    localtime_r(&now, &local);  // thread-safe: logs are written from parallel workers
+    std::strftime(stamp, sizeof(stamp), "%Y-%m-%d %H:%M:%S", &local);
     file_ << stamp << "  " << text << '\n';
     file_.flush();
   }
@@ -120,25 +124,72 @@ Status ParseShard(const std::string& text, BatchOptions* options) {
   return Status::Ok();
 }
 
-StatusOr<std::vector<std::string>> FindSequences(const std::string& root) {
+StatusOr<std::vector<std::string>> FindSequences(const std::string& root,
+                                                 std::vector<std::string>* nested) {
   std::error_code error;
   if (!fs::is_directory(root, error)) {
     return Status::NotFound(root + ": not a directory");
   }
-  std::vector<std::string> sequences;
-  if (fs::exists(fs::path(root) / "rig.yaml")) return std::vector<std::string>{"."};
-  fs::recursive_directory_iterator it(root, fs::directory_options::skip_permission_denied, error);
+  // Symbolic links to folders are followed (a corpus assembled from links is common); the
+  // relative paths stay those of the links, so outputs mirror the tree as the user sees it.
+  // A link back to a folder already visited is not entered again.
+  std::vector<std::string> all;
+  std::set<fs::path> visited;
+  visited.insert(fs::canonical(root, error));
+  if (fs::exists(fs::path(root) / "rig.yaml", error)) all.push_back(".");
+  fs::recursive_directory_iterator it(root,
+                                      fs::directory_options::skip_permission_denied |
+                                          fs::directory_options::follow_directory_symlink,
+                                      error);
   if (error) return Status::IoError(root + ": " + error.message());
   for (; it != fs::recursive_directory_iterator(); it.increment(error)) {
     if (error) return Status::IoError(root + ": " + error.message());
     if (!it->is_directory(error)) continue;
+    if (!visited.insert(fs::canonical(it->path(), error)).second) {
+      it.disable_recursion_pending();
+      continue;
+    }
     if (fs::exists(it->path() / "rig.yaml", error)) {
-      sequences.push_back(fs::relative(it->path(), root).generic_string());
-      it.disable_recursion_pending();  // a sequence's own folders are not sequences
+      all.push_back(it->path().lexically_relative(root).generic_string());
     }
   }
-  std::sort(sequences.begin(), sequences.end());
+  std::sort(all.begin(), all.end());
+  // A folder holding rig.yaml inside another sequence's folder is not annotated (its outputs
+  // would mix with the enclosing sequence's); the caller names it.
+  std::vector<std::string> sequences;
+  for (const std::string& path : all) {
+    const bool inside = std::any_of(sequences.begin(), sequences.end(), [&](const auto& outer) {
+      return outer == "." || path.rfind(outer + "/", 0) == 0;
+    });
+    if (!inside) {
+      sequences.push_back(path);
+    } else if (nested != nullptr) {
+      nested->push_back(path);
+    }
+  }
   return sequences;
+}
+
+Status CheckOutputOutsideSequences(const std::string& root, const std::string& out_dir,
+                                   const std::vector<std::string>& sequences) {
+  std::error_code error;
+  const fs::path out = fs::weakly_canonical(fs::absolute(out_dir), error);
+  for (const std::string& relative : sequences) {
+    const fs::path sequence = fs::weakly_canonical(fs::absolute(fs::path(root) / relative), error);
+    const fs::path annotation = fs::weakly_canonical(out / relative, error);
+    // The annotation inside (or equal to) its own sequence folder would write among the
+    // input files; `out` inside any sequence folder would put outputs into the input tree.
+    for (const fs::path& inside : {annotation, out}) {
+      const std::string rel = inside.lexically_relative(sequence).generic_string();
+      if (!rel.empty() && rel != ".." && rel.rfind("../", 0) != 0) {
+        return Status::InvalidConfig(fmt::format(
+            "--out {}: the annotation of sequence '{}' would be written inside the sequence "
+            "folder {} (choose an output folder outside the input tree)",
+            out_dir, relative, sequence.string()));
+      }
+    }
+  }
+  return Status::Ok();
 }
 
 std::vector<std::string> SelectShard(const std::vector<std::string>& sequences, int index,
@@ -174,9 +225,11 @@ int BatchResult::num_failed() const {
 StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_dir,
                                const BatchOptions& options, const BatchProgressCallback& progress) {
   BCOT_RETURN_IF_ERROR(options.Validate());
-  BCOT_ASSIGN_OR_RETURN(const std::vector<std::string> all, FindSequences(root));
+  std::vector<std::string> nested;
+  BCOT_ASSIGN_OR_RETURN(const std::vector<std::string> all, FindSequences(root, &nested));
   const std::vector<std::string> selected =
       SelectShard(all, options.shard_index, options.shard_count);
+  BCOT_RETURN_IF_ERROR(CheckOutputOutsideSequences(root, out_dir, selected));
   BCOT_RETURN_IF_ERROR(CreateDirectories(out_dir));
   RemoveStaleTempFiles(out_dir, /*recursive=*/false);
   const auto start = std::chrono::steady_clock::now();
@@ -220,6 +273,21 @@ StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_d
     state.frames_total += entry.frames;
     result.sequences.push_back(entry);
   }
+
+  // Nested sequences are named once (by shard 0), as failures: they are not annotated.
+  for (const std::string& relative :
+       options.shard_index == 0 ? nested : std::vector<std::string>{}) {
+    BatchSequenceResult entry;
+    entry.relative_path = relative;
+    entry.outcome = BatchOutcome::kFailed;
+    entry.error =
+        "nested inside another sequence folder (one holding rig.yaml): not annotated; move it "
+        "out of that folder";
+    ++state.sequences_done;
+    ++state.sequences_failed;
+    result.sequences.push_back(entry);
+  }
+  state.sequences_total += static_cast<int>(result.sequences.size() - selected.size());
 
   std::mutex mutex;  // guards `state` and the progress callback
   auto report = [&](const std::function<void(BatchProgress&)>& change) {

@@ -28,7 +28,38 @@ TEST(BatchTest, FindSequencesMirrorsTheTreeAndStopsAtASequence) {
   const StatusOr<std::vector<std::string>> found = FindSequences(root.path());
   ASSERT_TRUE(found.ok()) << found.status().message();
   EXPECT_THAT(*found, ElementsAre("a/nested", "lab1/a", "lab1/b", "lab2/day3/c"));
+  std::vector<std::string> nested;
+  ASSERT_TRUE(FindSequences(root.path(), &nested).ok());
+  EXPECT_THAT(nested, ElementsAre("a/nested/inner"));
   EXPECT_EQ(FindSequences(root.File("missing")).status().code(), StatusCode::kNotFound);
+}
+
+// Linked sequences and linked folders are found under the links' names (so their outputs are
+// written under --out, never through the link into the source data); a link cycle ends.
+TEST(BatchTest, FindSequencesFollowsLinksUnderTheirOwnNames) {
+  test::TempDir data;
+  test::WriteText(data.File("store/seqA/rig.yaml"), "cameras: []\n");
+  test::WriteText(data.File("store/group/seqB/rig.yaml"), "cameras: []\n");
+  test::TempDir root;
+  fs::create_symlink(data.File("store/seqA"), root.File("linked_seq"));
+  fs::create_symlink(data.File("store/group"), root.File("linked_group"));
+  fs::create_directories(root.File("loop"));
+  fs::create_directory_symlink(root.path(), root.File("loop/back"));
+  const StatusOr<std::vector<std::string>> found = FindSequences(root.path());
+  ASSERT_TRUE(found.ok()) << found.status().message();
+  EXPECT_THAT(*found, ElementsAre("linked_group/seqB", "linked_seq"));
+}
+
+TEST(BatchTest, OutputInsideTheInputSequencesIsRefused) {
+  test::TempDir root;
+  test::WriteText(root.File("lab/s1/rig.yaml"), "cameras: []\n");
+  const std::vector<std::string> sequences = {"lab/s1"};
+  EXPECT_TRUE(CheckOutputOutsideSequences(root.path(), root.File("out"), sequences).ok());
+  EXPECT_TRUE(CheckOutputOutsideSequences(root.path(), root.File("lab/ann"), sequences).ok());
+  const Status same = CheckOutputOutsideSequences(root.path(), root.path(), sequences);
+  EXPECT_EQ(same.code(), StatusCode::kInvalidConfig);
+  EXPECT_THAT(same.message(), HasSubstr("inside the sequence folder"));
+  EXPECT_FALSE(CheckOutputOutsideSequences(root.path(), root.File("lab/s1/ann"), sequences).ok());
 }
 
 TEST(BatchTest, ShardsAreDisjointCompleteAndDeterministic) {

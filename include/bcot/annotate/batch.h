@@ -48,8 +48,16 @@ struct BatchOptions {
 Status ParseShard(const std::string& text, BatchOptions* options);
 
 // Relative paths (sorted, "." for the root itself) of every folder under `root` holding
-// rig.yaml. kNotFound when `root` is not a directory.
-StatusOr<std::vector<std::string>> FindSequences(const std::string& root);
+// rig.yaml, following symbolic links to folders (paths are those of the links). A folder
+// holding rig.yaml inside another sequence is not returned but added to `nested` (when given).
+// kNotFound when `root` is not a directory.
+StatusOr<std::vector<std::string>> FindSequences(const std::string& root,
+                                                 std::vector<std::string>* nested = nullptr);
+
+// kInvalidConfig naming --out when an annotation directory `<out_dir>/<sequence>` would lie in
+// (or be) its sequence's folder, or `out_dir` inside any sequence folder of `root`.
+Status CheckOutputOutsideSequences(const std::string& root, const std::string& out_dir,
+                                   const std::vector<std::string>& sequences);
 
 // The sequences of shard `index` of `count` (see the header comment).
 std::vector<std::string> SelectShard(const std::vector<std::string>& sequences, int index,

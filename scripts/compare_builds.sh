@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Checks that two bcot builds annotate identically (for refactorings that must not change
+# results): synthesizes the demo sequence and 20 frames of glossy_fast with the first build,
+# annotates both with configs/annotate.yaml (bcot batch) and the demo with configs/track.yaml
+# using each build, and compares rig_from_object.txt, <camera>/pose.txt, quality.csv and
+# frames.csv (without its wall-time column) byte for byte.
+# Usage: scripts/compare_builds.sh BCOT_BEFORE BCOT_AFTER [work dir, default out/compare_builds]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if [ $# -lt 2 ]; then
+  echo "usage: scripts/compare_builds.sh BCOT_BEFORE BCOT_AFTER [work dir]" >&2
+  exit 2
+fi
+before=$(realpath "$1")
+after=$(realpath "$2")
+work=${3:-out/compare_builds}
+mkdir -p "$work/seq"
+[ -f "$work/seq/demo/rig.yaml" ] ||
+  "$before" synth --config configs/synth/demo.yaml --out "$work/seq/demo"
+[ -f "$work/seq/glossy/rig.yaml" ] ||
+  "$before" synth --config configs/synth/glossy_fast.yaml --out "$work/seq/glossy" \
+    --set motion.num_frames=20
+for side in before after; do
+  bin=${!side}
+  rm -rf "${work:?}/$side"
+  "$bin" batch "$work/seq" --out "$work/$side/ann" --config configs/annotate.yaml --jobs 1 \
+    >/dev/null 2>&1 || true  # a rejected sequence exits 1; the files are compared below
+  "$bin" annotate "$work/seq/demo" --out "$work/$side/track" --config configs/track.yaml \
+    --quiet 2>/dev/null || true
+done
+status=0
+for dir in ann/demo ann/glossy track; do
+  for file in rig_from_object.txt cam0/pose.txt cam1/pose.txt quality.csv; do
+    if cmp -s "$work/before/$dir/$file" "$work/after/$dir/$file"; then
+      echo "same       $dir/$file"
+    else
+      echo "DIFFERENT  $dir/$file"; status=1
+    fi
+  done
+  # frames.csv without the milliseconds column (wall time).
+  strip() { python3 -c 'import csv,sys
+rows=list(csv.reader(open(sys.argv[1])))
+i=rows[0].index("milliseconds")
+print("\n".join(",".join(r[:i]+r[i+1:]) for r in rows))' "$1"; }
+  if [ "$(strip "$work/before/$dir/frames.csv")" = "$(strip "$work/after/$dir/frames.csv")" ]; then
+    echo "same       $dir/frames.csv (wall time excluded)"
+  else
+    echo "DIFFERENT  $dir/frames.csv"; status=1
+  fi
+done
+exit $status
