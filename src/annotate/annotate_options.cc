@@ -129,6 +129,7 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name, An
         own.cost = RegionCostOptions();
         own.energy = RegionEnergy::kDense;
         own.lines = CorrespondenceLineOptions();
+        own.edge = EdgeRefineOptions();
         return own.Validate();
       }));
 
@@ -178,6 +179,20 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name, An
         return m.GetOptional("weight", &lines.weight);
       },
       [&] { return lines.Validate(); }));
+
+  EdgeRefineOptions& edge = frame.edge;
+  BCOT_RETURN_IF_ERROR(ParseSection(
+      root, "edge",
+      [&](YamlMap& m) -> Status {
+        BCOT_RETURN_IF_ERROR(m.GetOptional("enabled", &edge.enabled));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("rounds", &edge.rounds));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("iterations", &edge.iterations));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("robust_scale", &edge.robust_scale));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("num_lines", &edge.lines.num_lines));
+        BCOT_RETURN_IF_ERROR(m.GetOptional("search_px", &edge.lines.search_px));
+        return m.GetOptional("min_sigma_px", &edge.lines.min_sigma_px);
+      },
+      [&] { return edge.Validate(); }));
 
   ColorModelOptions& color = o->tracker.color;
   BCOT_RETURN_IF_ERROR(ParseSection(
@@ -360,6 +375,14 @@ std::string FormatAnnotateOptions(const AnnotateOptions& o) {
   line("min_sigma_px", number(f.lines.min_sigma_px));
   line("max_sigma_px", number(f.lines.max_sigma_px));
   line("weight", number(f.lines.weight));
+  section("edge");
+  line("enabled", f.edge.enabled ? "true" : "false");
+  line("rounds", number(f.edge.rounds));
+  line("iterations", number(f.edge.iterations));
+  line("robust_scale", number(f.edge.robust_scale));
+  line("num_lines", number(f.edge.lines.num_lines));
+  line("search_px", number(f.edge.lines.search_px));
+  line("min_sigma_px", number(f.edge.lines.min_sigma_px));
   section("color");
   line("kind", KindName(c.kind));
   line("refine_kind", c.refine_kind.has_value() ? KindName(*c.refine_kind) : "same");

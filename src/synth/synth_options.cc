@@ -129,6 +129,7 @@ std::vector<Violation> CollectViolations(const SynthOptions& o) {
   v.NonNegative("background.ground_clearance_mm", b.ground_clearance_mm);
   v.InRange("background.clutter_shapes", b.clutter_shapes, 0, 10000);
   v.InRange("background.similar_color_fraction", b.similar_color_fraction, 0.0, 1.0);
+  v.InRange("background.object_tint", b.object_tint, 0.0, 1.0);
 
   const auto& d = o.distractors;
   v.InRange("distractors.count", d.count, 0, 100);
@@ -145,6 +146,7 @@ std::vector<Violation> CollectViolations(const SynthOptions& o) {
   v.InRange("light.elevation_deg", l.elevation_deg, -90.0, 90.0);
   v.InRange("light.intensity", l.intensity, 0.0, 10.0);
   v.InRange("light.ambient", l.ambient, 0.0, 10.0);
+  v.InRange("light.softness_deg", l.softness_deg, 0.0, 60.0);
   v.InRange("light.deg_per_frame", l.deg_per_frame, -90.0, 90.0);
 
   const auto& r = o.render;
@@ -160,6 +162,7 @@ std::vector<Violation> CollectViolations(const SynthOptions& o) {
   v.InRange("sensor.blur_sigma_px", s.blur_sigma_px, 0.0, 20.0);
   v.InRange("sensor.motion_blur_subframes", s.motion_blur_subframes, 1, 64);
   v.InLeftOpenRange("sensor.exposure_fraction", s.exposure_fraction, 0.0, 1.0);
+  v.InRange("sensor.jpeg_quality", s.jpeg_quality, 0, 100);
 
   v.InRange("init.rotation_deg", o.init.rotation_deg, 0.0, 180.0);
   v.InRange("init.translation_mm", o.init.translation_mm, 0.0, 1e6);
@@ -288,7 +291,8 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
     BCOT_RETURN_IF_ERROR(m.GetOptional("ground", &s.ground));
     BCOT_RETURN_IF_ERROR(m.GetOptional("ground_clearance_mm", &s.ground_clearance_mm));
     BCOT_RETURN_IF_ERROR(m.GetOptional("clutter_shapes", &s.clutter_shapes));
-    return m.GetOptional("similar_color_fraction", &s.similar_color_fraction);
+    BCOT_RETURN_IF_ERROR(m.GetOptional("similar_color_fraction", &s.similar_color_fraction));
+    return m.GetOptional("object_tint", &s.object_tint);
   }));
 
   BCOT_RETURN_IF_ERROR(ParseSection(root, "distractors", [&](YamlMap& m) -> Status {
@@ -308,6 +312,7 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
     BCOT_RETURN_IF_ERROR(m.GetOptional("elevation_deg", &s.elevation_deg));
     BCOT_RETURN_IF_ERROR(m.GetOptional("intensity", &s.intensity));
     BCOT_RETURN_IF_ERROR(m.GetOptional("ambient", &s.ambient));
+    BCOT_RETURN_IF_ERROR(m.GetOptional("softness_deg", &s.softness_deg));
     BCOT_RETURN_IF_ERROR(m.GetOptional("moves", &s.moves));
     return m.GetOptional("deg_per_frame", &s.deg_per_frame);
   }));
@@ -328,7 +333,8 @@ Status ParseInto(const YAML::Node& root_node, const std::string& source_name,
     BCOT_RETURN_IF_ERROR(m.GetOptional("shot_noise_gain", &s.shot_noise_gain));
     BCOT_RETURN_IF_ERROR(m.GetOptional("blur_sigma_px", &s.blur_sigma_px));
     BCOT_RETURN_IF_ERROR(m.GetOptional("motion_blur_subframes", &s.motion_blur_subframes));
-    return m.GetOptional("exposure_fraction", &s.exposure_fraction);
+    BCOT_RETURN_IF_ERROR(m.GetOptional("exposure_fraction", &s.exposure_fraction));
+    return m.GetOptional("jpeg_quality", &s.jpeg_quality);
   }));
 
   BCOT_RETURN_IF_ERROR(ParseSection(root, "init", [&](YamlMap& m) -> Status {
@@ -472,6 +478,7 @@ std::string FormatSynthOptions(const SynthOptions& o) {
   line("ground_clearance_mm", FormatNumber(o.background.ground_clearance_mm));
   line("clutter_shapes", std::to_string(o.background.clutter_shapes));
   line("similar_color_fraction", FormatNumber(o.background.similar_color_fraction));
+  line("object_tint", FormatNumber(o.background.object_tint));
 
   y += "distractors:\n";
   line("count", std::to_string(o.distractors.count));
@@ -486,6 +493,7 @@ std::string FormatSynthOptions(const SynthOptions& o) {
   line("elevation_deg", FormatNumber(o.light.elevation_deg));
   line("intensity", FormatNumber(o.light.intensity));
   line("ambient", FormatNumber(o.light.ambient));
+  line("softness_deg", FormatNumber(o.light.softness_deg));
   line("moves", Bool(o.light.moves));
   line("deg_per_frame", FormatNumber(o.light.deg_per_frame));
 
@@ -502,6 +510,7 @@ std::string FormatSynthOptions(const SynthOptions& o) {
   line("blur_sigma_px", FormatNumber(o.sensor.blur_sigma_px));
   line("motion_blur_subframes", std::to_string(o.sensor.motion_blur_subframes));
   line("exposure_fraction", FormatNumber(o.sensor.exposure_fraction));
+  line("jpeg_quality", std::to_string(o.sensor.jpeg_quality));
 
   y += "init:\n";
   line("rotation_deg", FormatNumber(o.init.rotation_deg));
