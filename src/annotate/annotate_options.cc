@@ -166,6 +166,37 @@ void DeclareLines(OptionSchema<AnnotateOptions>* s) {
       });
 }
 
+void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
+  s->Add(
+      "edge.enabled", [](auto& o) -> auto& { return o.tracker.frame.edge.enabled; }, "",
+      "final edge-alignment stage on the image's own blurred step along the contour normals");
+  s->Add(
+       "edge.rounds", [](auto& o) -> auto& { return o.tracker.frame.edge.rounds; }, "",
+       "re-rendered edge solves")
+      .Range(AtLeast(1));
+  s->Add(
+       "edge.iterations", [](auto& o) -> auto& { return o.tracker.frame.edge.iterations; }, "",
+       "Ceres iterations per edge solve")
+      .Range(AtLeast(1));
+  s->Add(
+       "edge.robust_scale", [](auto& o) -> auto& { return o.tracker.frame.edge.robust_scale; },
+       "sigma", "Huber threshold of the edge residuals")
+      .Range(Positive());
+  s->Add(
+       "edge.num_lines", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.num_lines; },
+       "", "edge lines per view, evenly spaced along the contour")
+      .Range(AtLeast(1));
+  s->Add(
+       "edge.search_px", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.search_px; },
+       "px", "the edge is looked for within this distance of the contour")
+      .Range(Positive());
+  s->Add(
+       "edge.min_sigma_px",
+       [](auto& o) -> auto& { return o.tracker.frame.edge.lines.min_sigma_px; }, "px",
+       "floor of an edge line's standard deviation")
+      .Range(Positive());
+}
+
 void DeclareColorAndTracker(OptionSchema<AnnotateOptions>* s) {
   s->AddChoice(
       "color.kind", [](auto& o) -> auto& { return o.tracker.color.kind; }, kColorKinds,
@@ -330,6 +361,7 @@ OptionSchema<AnnotateOptions>* BuildAnnotateOptionSchema() {
   DeclareFrame(s);
   DeclareRegionAndCost(s);
   DeclareLines(s);
+  DeclareEdge(s);
   DeclareColorAndTracker(s);
   DeclareViewsAndWindow(s);
   s->Include(

@@ -1,5 +1,6 @@
 #include "bcot/optim/frame_problem.h"
 
+#include <ceres/loss_function.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 #include <fmt/format.h>
@@ -7,6 +8,8 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bcot/core/se3.h"
 #include "bcot/optim/correspondence_line_cost.h"
@@ -62,7 +65,24 @@ Status FrameProblemOptions::Validate() const {
   }
   const Status lines_status = lines.Validate();
   if (!lines_status.ok()) violations.push_back(lines_status.message());
+  const Status edge_status = edge.Validate();
+  if (!edge_status.ok()) violations.push_back(edge_status.message());
   return internal::JoinViolations("frame_problem", violations);
+}
+
+Status EdgeRefineOptions::Validate() const {
+  std::vector<std::string> violations;
+  if (rounds < 1) violations.push_back(fmt::format("rounds = {}, must be >= 1", rounds));
+  if (iterations < 1) {
+    violations.push_back(fmt::format("iterations = {}, must be >= 1", iterations));
+  }
+  if (!(robust_scale > 0.0) || !std::isfinite(robust_scale)) {
+    violations.push_back(fmt::format("robust_scale = {}, must be finite and > 0", robust_scale));
+  }
+  if (min_lines < 6) violations.push_back(fmt::format("min_lines = {}, must be >= 6", min_lines));
+  const Status lines_status = lines.Validate();
+  if (!lines_status.ok()) violations.push_back(lines_status.message());
+  return internal::JoinViolations("edge", violations);
 }
 
 const char* RegionEnergyName(RegionEnergy energy) {
@@ -314,8 +334,69 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
       break;
     }
   }
+  if (options_.edge.enabled) {
+    const FrameSummary region_summary = summary;
+    const PoseParameters region_x = x;
+    if (!RefineEdges(views, x.data(), &summary)) {
+      // Too few edge lines or a failed solve: keep the region result.
+      x = region_x;
+      summary = region_summary;
+    }
+  }
   *rig_from_objcentre = FromPoseParameters(x.data());
   return summary;
+}
+
+bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* parameters,
+                               FrameSummary* summary) const {
+  const EdgeRefineOptions& edge = options_.edge;
+  const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
+  // Model points are read from the contour only: a coarse point stride saves closest hits.
+  constexpr int kPointStridePx = 64;
+  for (int round = 0; round < edge.rounds; ++round) {
+    const Eigen::Isometry3d linearisation_pose = FromPoseParameters(parameters);
+    ceres::Problem problem;
+    std::vector<std::pair<int, std::shared_ptr<const CorrespondenceLines>>> measured;
+    int total_lines = 0;
+    for (size_t v = 0; v < views.size(); ++v) {
+      const FrameView& view = views[v];
+      if (view.weight == 0.0) continue;
+      const Silhouette silhouette = RenderSilhouette(
+          caster_, *view.camera, view.cam_from_rig * linearisation_pose * objcentre_from_template,
+          options_.region.contour, kPointStridePx);
+      StatusOr<CorrespondenceLines> lines =
+          BuildEdgeLines(caster_, *view.camera, view.cam_from_rig, linearisation_pose, *view.image,
+                         silhouette, edge.lines);
+      BCOT_CHECK(lines.ok());
+      if (lines->lines.empty()) continue;
+      total_lines += static_cast<int>(lines->lines.size());
+      auto shared = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
+      problem.AddResidualBlock(
+          new CorrespondenceLineCostFunction(*view.camera, view.cam_from_rig, shared, view.weight),
+          new ceres::HuberLoss(edge.robust_scale), parameters);
+      measured.emplace_back(static_cast<int>(v), std::move(shared));
+    }
+    if (total_lines < edge.min_lines) return false;
+    problem.SetManifold(parameters, new Se3Manifold());
+    ceres::Solver::Options solver_options;
+    solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+    solver_options.max_num_iterations = edge.iterations;
+    solver_options.num_threads = options_.num_threads;
+    solver_options.logging_type = ceres::SILENT;
+    ceres::Solver::Summary ceres_summary;
+    ceres::Solve(solver_options, &problem, &ceres_summary);
+    summary->iterations += static_cast<int>(ceres_summary.iterations.size()) - 1;
+    if (!ceres_summary.IsSolutionUsable()) return false;
+    for (FrameViewSummary& view_summary : summary->views) view_summary.edge_lines = 0;
+    for (const auto& [v, lines] : measured) {
+      summary->views[v].edge_lines = static_cast<int>(lines->lines.size());
+    }
+    const Eigen::Isometry3d round_end = FromPoseParameters(parameters);
+    const double moved_deg = RotationDistanceDeg(linearisation_pose.linear(), round_end.linear());
+    const double moved_mm = (round_end.translation() - linearisation_pose.translation()).norm();
+    if (moved_deg < options_.round_tolerance_deg && moved_mm < options_.round_tolerance_mm) break;
+  }
+  return true;
 }
 
 }  // namespace bcot

@@ -358,11 +358,31 @@ Eigen::Vector3f TexturedPlane::Albedo(const Eigen::Vector3d& point) const {
                         d.dot(v_axis) / texel_mm + 0.5 * (image.rows - 1));
 }
 
+float SoftLambert(float n_dot_l, float softness) {
+  if (n_dot_l >= softness) return n_dot_l;
+  if (n_dot_l <= -softness) return 0.0f;
+  const float u = n_dot_l + softness;
+  return u * u / (4.0f * softness);
+}
+
+void TintTexture(const std::array<double, 3>& rgb_255, double fraction, cv::Mat3b* rgb) {
+  if (fraction <= 0.0) return;
+  const float f = static_cast<float>(fraction);
+  for (int r = 0; r < rgb->rows; ++r) {
+    for (int c = 0; c < rgb->cols; ++c) {
+      cv::Vec3b& px = (*rgb)(r, c);
+      for (int k = 0; k < 3; ++k) {
+        px[k] = cv::saturate_cast<uchar>((1.0f - f) * px[k] + f * static_cast<float>(rgb_255[k]));
+      }
+    }
+  }
+}
+
 Eigen::Vector3f Shade(const SurfaceMaterial& material, const SceneLight& light,
                       const Eigen::Vector3f& normal, const Eigen::Vector3f& to_viewer) {
   const float n_dot_l = normal.dot(light.to_light);
   Eigen::Vector3f color =
-      material.albedo * (light.ambient + light.intensity * std::max(0.0f, n_dot_l));
+      material.albedo * (light.ambient + light.intensity * SoftLambert(n_dot_l, light.softness));
   if (material.specular > 0.0f && n_dot_l > 0.0f) {
     const Eigen::Vector3f half = (light.to_light + to_viewer).normalized();
     const float n_dot_h = std::max(0.0f, normal.dot(half));

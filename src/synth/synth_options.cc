@@ -179,6 +179,10 @@ void DeclareMotionAndBackground(OptionSchema<SynthOptions>* s) {
        [](auto& o) -> auto& { return o.background.similar_color_fraction; }, "",
        "fraction of clutter shapes coloured close to the object")
       .Range(Closed(0, 1));
+  s->Add(
+       "background.object_tint", [](auto& o) -> auto& { return o.background.object_tint; }, "",
+       "blend every backdrop and table texel towards the object colour (low contrast)")
+      .Range(Closed(0, 1));
 }
 
 void DeclareSceneAndSensor(OptionSchema<SynthOptions>* s) {
@@ -226,6 +230,10 @@ void DeclareSceneAndSensor(OptionSchema<SynthOptions>* s) {
   s->Add(
        "light.ambient", [](auto& o) -> auto& { return o.light.ambient; }, "", "ambient intensity")
       .Range(Closed(0, 10));
+  s->Add(
+       "light.softness_deg", [](auto& o) -> auto& { return o.light.softness_deg; }, "deg",
+       "angular radius of the key light: the terminator is smoothed over +-softness")
+      .Range(Closed(0, 60));
   s->Add(
       "light.moves", [](auto& o) -> auto& { return o.light.moves; }, "",
       "the light turns about z by deg_per_frame every frame");
@@ -276,6 +284,10 @@ void DeclareSceneAndSensor(OptionSchema<SynthOptions>* s) {
        "sensor.exposure_fraction", [](auto& o) -> auto& { return o.sensor.exposure_fraction; }, "",
        "motion blur spans this fraction of the frame interval")
       .Range(LeftOpen(0, 1));
+  s->Add(
+       "sensor.jpeg_quality", [](auto& o) -> auto& { return o.sensor.jpeg_quality; }, "",
+       "0: frames as PNG; 1..100: as JPEG of that quality (libjpeg's 4:2:0 chroma)")
+      .Range(Closed(0, 100));
   s->Add(
        "init.rotation_deg", [](auto& o) -> auto& { return o.init.rotation_deg; }, "deg",
        "init_pose.txt = frame 0's truth turned by this about a random axis ...")

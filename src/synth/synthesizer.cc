@@ -229,6 +229,7 @@ ViewState SynthWorld::Impl::MakeViewState(int view, double t) const {
   s.light_in_world.to_light = to_light_world.cast<float>();
   s.light_in_world.intensity = static_cast<float>(l.intensity);
   s.light_in_world.ambient = static_cast<float>(l.ambient);
+  s.light_in_world.softness = static_cast<float>(std::sin(l.softness_deg * kDegToRad));
   s.light_in_cam = s.light_in_world;
   s.light_in_cam.to_light = (s.cam_from_world.linear() * to_light_world).cast<float>();
   return s;
@@ -336,7 +337,8 @@ void SynthWorld::Impl::RenderRegion(const ViewState& state, int view, const cv::
           } else if (best == -2) {
             const Eigen::Vector3d point = camera_centre + plane_depth * ray_in_world;
             const float lambert =
-                std::max(0.0f, plane->normal.cast<float>().dot(state.light_in_world.to_light));
+                SoftLambert(plane->normal.cast<float>().dot(state.light_in_world.to_light),
+                            state.light_in_world.softness);
             color = plane->Albedo(point) *
                     (state.light_in_world.ambient + state.light_in_world.intensity * lambert);
           } else {
@@ -589,6 +591,7 @@ StatusOr<TexturedPlane> MakeBackdrop(const SynthOptions& options, int view,
     const std::string& path = b.images[image_view_index % b.images.size()];
     BCOT_ASSIGN_OR_RETURN(texture, LoadPhotoTexture(path, size));
   }
+  TintTexture(options.object.color_rgb, b.object_tint, &texture);
   plane.texture = Texture(SrgbImageToLinear(texture));
   return plane;
 }
@@ -677,7 +680,9 @@ StatusOr<std::unique_ptr<SynthWorld>> SynthWorld::Create(const SynthOptions& opt
     ground.normal = Eigen::Vector3d::UnitZ();
     ground.texel_mm = std::max(0.25, options.cameras.distance_mm / w->cameras[0].camera.fx);
     SynthRng rng(MixSeed(static_cast<uint64_t>(options.seed), 999));
-    ground.texture = Texture(SrgbImageToLinear(MakeTableTexture(cv::Size(2048, 2048), &rng)));
+    cv::Mat3b table = MakeTableTexture(cv::Size(2048, 2048), &rng);
+    TintTexture(options.object.color_rgb, options.background.object_tint, &table);
+    ground.texture = Texture(SrgbImageToLinear(table));
     w->ground = std::move(ground);
   }
 
@@ -728,9 +733,19 @@ StatusOr<std::unique_ptr<SynthWorld>> SynthWorld::Create(const SynthOptions& opt
 
 namespace {
 
-Status WriteImage(const std::string& path, const cv::Mat& image) {
+// PNG, or JPEG with 4:2:0 chroma subsampling when jpeg_quality > 0 (the path's extension
+// must match).
+Status WriteImage(const std::string& path, const cv::Mat& image, int jpeg_quality = 0) {
   std::vector<uchar> bytes;
-  if (!cv::imencode(".png", image, bytes)) return Status::Internal(path + ": PNG encoding failed");
+  if (jpeg_quality > 0) {
+    // libjpeg's defaults (which OpenCV keeps) subsample both chroma channels 2×2 (4:2:0).
+    const std::vector<int> params = {cv::IMWRITE_JPEG_QUALITY, jpeg_quality};
+    if (!cv::imencode(".jpg", image, bytes, params)) {
+      return Status::Internal(path + ": JPEG encoding failed");
+    }
+  } else if (!cv::imencode(".png", image, bytes)) {
+    return Status::Internal(path + ": PNG encoding failed");
+  }
   return WriteFileAtomic(path, std::string(bytes.begin(), bytes.end()));
 }
 
@@ -778,7 +793,10 @@ Status Synthesize(const SynthOptions& options, const std::string& out_dir,
             const std::string& name = rig[view].camera.name;
             cv::Mat1f coverage;
             const cv::Mat3b image = world.RenderFrame(view, frame, &coverage);
-            local = WriteImage(root + name + "/" + FrameName(frame) + ".png", image);
+            local = options.sensor.jpeg_quality > 0
+                        ? WriteImage(root + name + "/" + FrameName(frame) + ".jpg", image,
+                                     options.sensor.jpeg_quality)
+                        : WriteImage(root + name + "/" + FrameName(frame) + ".png", image);
             if (local.ok() && options.output.write_coverage) {
               cv::Mat1b coverage8;
               coverage.convertTo(coverage8, CV_8U, 255.0);

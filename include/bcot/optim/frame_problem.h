@@ -38,6 +38,7 @@
 #include "bcot/core/status.h"
 #include "bcot/optim/color_model.h"
 #include "bcot/optim/correspondence_lines.h"
+#include "bcot/optim/edge_lines.h"
 #include "bcot/optim/region_cost.h"
 #include "bcot/optim/region_template.h"
 #include "bcot/render/ray_caster.h"
@@ -49,6 +50,31 @@ namespace bcot {
 enum class RegionEnergy { kDense, kSparse, kCombined };
 
 const char* RegionEnergyName(RegionEnergy energy);
+
+// The final edge-alignment stage (edge_lines.h): after the region rounds, `rounds` times
+// { ray-cast the silhouette at the current pose, measure every view's edge lines (the centre of
+// the image's blurred step along each contour normal), `iterations` Levenberg-Marquardt
+// iterations on ½Σ ρ(r²) of their residuals (CorrespondenceLineCostFunction, Huber ρ with
+// threshold robust_scale in σ units) }, stopping early like the region rounds. The region
+// energy is not part of it: its minimum is biased where a shaded rim moves the colour
+// posteriors' crossing inward, the edge's is not. Skipped (the region result kept) when all
+// views together have fewer than min_lines lines.
+struct EdgeRefineOptions {
+  // Off by default: the temporal window still refines on the region templates and pulls the
+  // poses back towards the region minima (window_problem_test); see README.
+  bool enabled = false;
+  // Re-rendered edge solves; >= 1.
+  int rounds = 2;
+  // Ceres iterations per edge solve; >= 1.
+  int iterations = 5;
+  // Huber threshold of the edge residuals (units of each line's σ); > 0.
+  double robust_scale = 3.0;
+  // Fewest lines over all views for the stage to run; >= 6 (six pose parameters).
+  int min_lines = 20;
+  // Measurement along each line.
+  EdgeLineOptions lines;
+  Status Validate() const;
+};
 
 struct FrameProblemOptions {
   // Rounds at full resolution (each re-renders the templates at the current pose); >= 1.
@@ -85,6 +111,8 @@ struct FrameProblemOptions {
   // Correspondence lines of the sparse energy at level 0; coarse levels multiply its lengths
   // by 2^l like the dense band.
   CorrespondenceLineOptions lines;
+  // The final edge-alignment stage (after the rounds at level 0).
+  EdgeRefineOptions edge;
   // Threads Ceres may use to evaluate residuals; >= 1.
   int num_threads = 1;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
@@ -114,6 +142,7 @@ const char* FrameTerminationName(FrameTermination termination);
 struct FrameViewSummary {
   int pixels = 0;       // band pixels of the view at level 0 in the last round
   int lines = 0;        // correspondence lines of the view at level 0 in the last round
+  int edge_lines = 0;   // edge lines of the view in the last edge round (0 without it)
   double energy = 0.0;  // w·Σ F of the view at the final pose (level 0 template of the last round)
 };
 
@@ -159,13 +188,21 @@ class FrameProblem {
   // (unless !summary.usable()). Views with weight 0 or the object out of view contribute no
   // residuals. CHECKs that views are complete and images match their cameras.
   // When `linearisations` is not null it receives the level-0 templates of the last round
-  // (views without band pixels left out); it is cleared when !summary.usable().
+  // (views without band pixels left out); it is cleared when !summary.usable(). These are the
+  // region rounds' templates also after an edge stage (a window on the edge lines, weighted
+  // by their σ, outweighs its motion prior: not yet calibrated). Energies in the summary are
+  // those of the region rounds.
   FrameSummary Solve(const std::vector<FrameView>& views, Eigen::Isometry3d* rig_from_objcentre,
                      std::vector<ViewLinearisation>* linearisations = nullptr) const;
 
   const FrameProblemOptions& options() const { return options_; }
 
  private:
+  // The edge stage (EdgeRefineOptions) from and into `parameters` (7 ambient); false (the
+  // caller restores the region result) when too few lines or Ceres failed.
+  bool RefineEdges(const std::vector<FrameView>& views, double* parameters,
+                   FrameSummary* summary) const;
+
   const RayCaster& caster_;
   FrameProblemOptions options_;
 };

@@ -75,12 +75,23 @@ struct SceneLight {
   Eigen::Vector3f to_light = Eigen::Vector3f::UnitZ();  // unit, towards the light
   float intensity = 1.0f;
   float ambient = 0.3f;
+  // sin of the light's angular radius, [0, 1): 0 = a directional light.
+  float softness = 0.0f;
 };
 
-// albedo·(ambient + intensity·max(0, n·l)) + specular·intensity·(s+8)/(8π)·max(0, n·h)^s
+// Irradiance factor of a light of angular radius ρ (softness = sin ρ) on a surface with
+// c = n·l: c above sin ρ, 0 below −sin ρ and (c + sin ρ)² / (4 sin ρ) between (the usual
+// smooth-terminator approximation of a disc light; C¹ at both ends). max(0, c) when
+// softness = 0.
+float SoftLambert(float n_dot_l, float softness);
+
+// albedo·(ambient + intensity·SoftLambert(n·l)) + specular·intensity·(s+8)/(8π)·max(0, n·h)^s
 // (energy-normalised Blinn-Phong), n and to_viewer unit.
 Eigen::Vector3f Shade(const SurfaceMaterial& material, const SceneLight& light,
                       const Eigen::Vector3f& normal, const Eigen::Vector3f& to_viewer);
+
+// Blends every texel of an sRGB texture towards `rgb_255` by `fraction` (background.object_tint).
+void TintTexture(const std::array<double, 3>& rgb_255, double fraction, cv::Mat3b* rgb);
 
 // Sensor model on a linear RGB image: optional Gaussian blur, exposure, shot noise
 // (variance gain·signal) and read noise (sigma), clipping, gamma, 8-bit rounding. Noise is

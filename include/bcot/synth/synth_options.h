@@ -119,6 +119,10 @@ struct SynthOptions {
     int clutter_shapes = 150;
     // Fraction of clutter shapes coloured close to the object colour, [0, 1].
     double similar_color_fraction = 0.25;
+    // Every backdrop and table texel is blended towards the object colour by this fraction,
+    // [0, 1]: low object/background contrast, as in real scenes with same-coloured
+    // surroundings (0 = textures as generated).
+    double object_tint = 0.0;
   } background;
 
   struct Distractors {
@@ -144,6 +148,9 @@ struct SynthOptions {
     // Directional and ambient intensities, each [0, 10].
     double intensity = 0.85;
     double ambient = 0.3;
+    // Angular radius (deg) of the key light, [0, 60]: a soft (area-like) light whose shading
+    // terminator is smoothed over ±softness around n·l = 0 (0 = a point-like directional light).
+    double softness_deg = 0.0;
     // When true the light turns about z by `deg_per_frame` every frame.
     bool moves = false;
     double deg_per_frame = 1.0;  // [−90, 90]
@@ -173,6 +180,9 @@ struct SynthOptions {
     // `exposure_fraction` of the frame interval centred on the frame time, [1, 64]; 1 = off.
     int motion_blur_subframes = 1;
     double exposure_fraction = 0.5;  // (0, 1]
+    // 0: frames are written as PNG; 1..100: as JPEG of that quality with 4:2:0 chroma
+    // subsampling (what most cameras and video codecs deliver).
+    int jpeg_quality = 0;
   } sensor;
 
   struct Init {

@@ -1,0 +1,100 @@
+// Edge lines: the image's own object edge along the contour normals, the measurement of the
+// final edge-alignment stage of a frame solve (frame_problem.h, `edge`).
+//
+// Why. A region energy places the contour where the foreground and background colour
+// posteriors cross. Where the object's rim is shaded (the surface turns away from the light
+// towards the silhouette) its colour near the edge moves towards the background's, the
+// crossing moves inward on that side and the pose is biased away from the dark rim (measured
+// with scripts/bench_bias.sh: a key light from above puts the solved object higher than the
+// truth). The edge itself does not move: the optics blur the radiance step with a symmetric
+// PSF, so the centre of the blurred step (its inflection) stays at the geometric contour for
+// any pair of colours on its two sides.
+//
+// Measurement, per line (centre c = contour point at T0, outward unit normal n, model point X):
+//   profile   I(s) = linear RGB (sRGB decoded: the blur acts on radiance, and the inflection of
+//             a gamma-encoded step is shifted towards its dark side) at c + s·n, bilinear,
+//             s = k·step_px over [−window_px, +window_px];
+//   scalar    p(s) = d̂·I(s) with d the mean colour over s ∈ [−window, −1] minus that over
+//             s ∈ [1, window] (the direction of largest contrast across this line);
+//   start     μ0 = the largest |dp/ds| within |s| <= search_px;
+//   fit       p(s) ≈ a + g·(s − μ0) + b·Φ(z) + k·w·(z·Φ(z) + φ(z)), z = (s − μ)/w, over
+//             |s − μ0| <= fit_half_px by Levenberg-Marquardt on (a, g, b, μ, w, k): a step
+//             between two linear trends with different slopes (the shaded rim inside, the
+//             background outside), blurred by a Gaussian of width w (Φ, φ the normal CDF and
+//             density): exact for piecewise-linear sides, so a shading ramp up to the edge does
+//             not move μ;
+//   variance  σ_μ² = (RSS / (m − 6))·[(JᵀJ)⁻¹]_μμ, floored at min_sigma_px².
+// The line becomes a CorrespondenceLine with mean_px = μ and sigma_px = σ_μ, so the pose stage
+// reuses CorrespondenceLineCostFunction: r = (n·(x_X(T) − x0) − μ)/σ.
+//
+// Rejection (counts in CorrespondenceLines::rejected_*):
+//   short      the rendered mask at T0 is not inside over [−window, −1] and outside over
+//              [1, window] along the line (thin part, another contour nearby);
+//   off image  the window or its bilinear neighbours leave the image, or X is behind the camera;
+//   ambiguous  contrast |d| below min_contrast (linear units), the fit did not converge, |μ| >
+//              search_px, w outside [min_width_px, max_width_px], or the step is below
+//              min_snr times the fit's residual standard deviation.
+//
+// Frames and units as correspondence_lines.h. Thread safety: pure functions.
+#pragma once
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "bcot/core/camera.h"
+#include "bcot/core/status.h"
+#include "bcot/optim/correspondence_lines.h"
+#include "bcot/optim/silhouette.h"
+#include "bcot/render/ray_caster.h"
+
+namespace bcot {
+
+struct EdgeLineOptions {
+  // Lines per view, evenly spaced along the contour; >= 1.
+  int num_lines = 200;
+  // Profile half-length (px) and sample spacing (px); window > search + fit_half is not
+  // required (the fit window is clipped to the profile), step > 0, window >= 2.
+  double window_px = 4.0;
+  double step_px = 0.25;
+  // The edge is looked for within ±search_px of the contour at T0; > 0.
+  double search_px = 2.0;
+  // Half-width (px) of the fit window around the start μ0; > step_px.
+  double fit_half_px = 2.5;
+  // Accepted range of the fitted blur width w (px); 0 < min < max.
+  double min_width_px = 0.15;
+  double max_width_px = 2.5;
+  // Smallest colour contrast |d| across the line (linear RGB, 1 = full scale); >= 0.
+  double min_contrast = 0.01;
+  // Smallest step |b| in units of the fit's residual standard deviation; >= 0.
+  double min_snr = 4.0;
+  // Floor of σ_μ (px): model errors (mesh facets, the contour's linearisation) are not in
+  // the fit's noise; > 0.
+  double min_sigma_px = 0.1;
+  // Lists every violation (field, value, rule) in one kInvalidConfig status.
+  Status Validate() const;
+};
+
+// The fitted step of one profile (exposed for tests).
+struct EdgeFit {
+  double mean_px = 0.0;   // μ
+  double sigma_px = 0.0;  // σ_μ (unfloored)
+  double width_px = 0.0;  // w
+  double step = 0.0;      // b
+};
+
+// Fits the blurred step to a scalar profile `values[k]` at offsets first_offset_px + k·step_px.
+// Returns false when a rejection rule above (contrast excepted) applies.
+bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
+                    const EdgeLineOptions& options, EdgeFit* fit);
+
+// Builds the edge lines of one view at T0 (rig_from_objcentre). `silhouette` must be
+// RenderSilhouette at cam_from_rig · T0 · objcentre_from_template. Errors as
+// BuildCorrespondenceLines.
+StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Camera& camera,
+                                             const Eigen::Isometry3d& cam_from_rig,
+                                             const Eigen::Isometry3d& rig_from_objcentre,
+                                             const cv::Mat3b& image, const Silhouette& silhouette,
+                                             const EdgeLineOptions& options = {});
+
+}  // namespace bcot

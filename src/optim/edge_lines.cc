@@ -1,0 +1,304 @@
+#include "bcot/optim/edge_lines.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "violations.h"
+
+namespace bcot {
+
+Status EdgeLineOptions::Validate() const {
+  std::vector<std::string> violations;
+  if (num_lines < 1) violations.push_back(fmt::format("num_lines = {}, must be >= 1", num_lines));
+  if (!(step_px > 0.0) || !std::isfinite(step_px)) {
+    violations.push_back(fmt::format("step_px = {}, must be finite and > 0", step_px));
+  }
+  if (!(window_px >= 2.0) || !std::isfinite(window_px)) {
+    violations.push_back(fmt::format("window_px = {}, must be finite and >= 2", window_px));
+  }
+  if (!(search_px > 0.0) || !std::isfinite(search_px)) {
+    violations.push_back(fmt::format("search_px = {}, must be finite and > 0", search_px));
+  }
+  if (!(fit_half_px > step_px) || !std::isfinite(fit_half_px)) {
+    violations.push_back(
+        fmt::format("fit_half_px = {}, must be finite and > step_px", fit_half_px));
+  }
+  if (!(min_width_px > 0.0) || !(max_width_px > min_width_px) || !std::isfinite(max_width_px)) {
+    violations.push_back(fmt::format("min_width_px = {}, max_width_px = {}: need 0 < min < max",
+                                     min_width_px, max_width_px));
+  }
+  if (!(min_contrast >= 0.0) || !std::isfinite(min_contrast)) {
+    violations.push_back(fmt::format("min_contrast = {}, must be finite and >= 0", min_contrast));
+  }
+  if (!(min_snr >= 0.0) || !std::isfinite(min_snr)) {
+    violations.push_back(fmt::format("min_snr = {}, must be finite and >= 0", min_snr));
+  }
+  if (!(min_sigma_px > 0.0) || !std::isfinite(min_sigma_px)) {
+    violations.push_back(fmt::format("min_sigma_px = {}, must be finite and > 0", min_sigma_px));
+  }
+  return internal::JoinViolations("edge", violations);
+}
+
+namespace {
+
+constexpr double kInvSqrt2 = 0.70710678118654752440;
+constexpr double kInvSqrt2Pi = 0.39894228040143267794;
+
+double NormalCdf(double z) { return 0.5 * std::erfc(-z * kInvSqrt2); }
+double NormalPdf(double z) { return kInvSqrt2Pi * std::exp(-0.5 * z * z); }
+
+constexpr int kParams = 6;
+using Params = Eigen::Matrix<double, kParams, 1>;
+using ParamsJacobian = Eigen::Matrix<double, Eigen::Dynamic, kParams>;
+
+// Residuals of the step model with parameters x = (a, g, b, μ, w, k) and, optionally, its
+// Jacobian: a + g·(s − μ0) + b·Φ(z) + k·w·R(z), z = (s − μ)/w, R(z) = z·Φ(z) + φ(z) (the
+// Gaussian-blurred kink max(0, s − μ)/w: the outside trend differs from the inside one by k).
+double Residuals(const std::vector<double>& s, const std::vector<double>& p, double mu0,
+                 const Params& x, Eigen::VectorXd* r, ParamsJacobian* jacobian) {
+  const int m = static_cast<int>(s.size());
+  double rss = 0.0;
+  for (int i = 0; i < m; ++i) {
+    const double z = (s[i] - x[3]) / x[4];
+    const double cdf = NormalCdf(z);
+    const double pdf = NormalPdf(z);
+    const double ramp = z * cdf + pdf;
+    const double value = x[0] + x[1] * (s[i] - mu0) + x[2] * cdf + x[5] * x[4] * ramp;
+    (*r)[i] = value - p[i];
+    rss += (*r)[i] * (*r)[i];
+    if (jacobian != nullptr) {
+      (*jacobian)(i, 0) = 1.0;
+      (*jacobian)(i, 1) = s[i] - mu0;
+      (*jacobian)(i, 2) = cdf;
+      (*jacobian)(i, 3) = -x[2] * pdf / x[4] - x[5] * cdf;
+      (*jacobian)(i, 4) = -x[2] * pdf * z / x[4] + x[5] * pdf;
+      (*jacobian)(i, 5) = x[4] * ramp;
+    }
+  }
+  return rss;
+}
+
+// sRGB 8-bit → linear lookup.
+const std::array<float, 256>& LinearTable() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) {
+      const double v = i / 255.0;
+      t[i] = static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+    }
+    return t;
+  }();
+  return table;
+}
+
+// Bilinear linear-RGB colour at p (BGR image; p and its 2×2 neighbours inside, checked by the
+// caller).
+Eigen::Vector3d SampleLinear(const cv::Mat3b& image, const Eigen::Vector2d& p) {
+  const std::array<float, 256>& lut = LinearTable();
+  const int x0 = static_cast<int>(std::floor(p.x()));
+  const int y0 = static_cast<int>(std::floor(p.y()));
+  const double fx = p.x() - x0, fy = p.y() - y0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  const double weights[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+  const int dx[4] = {0, 1, 0, 1}, dy[4] = {0, 0, 1, 1};
+  for (int k = 0; k < 4; ++k) {
+    const cv::Vec3b& px = image(y0 + dy[k], x0 + dx[k]);
+    sum += weights[k] * Eigen::Vector3d(lut[px[2]], lut[px[1]], lut[px[0]]);
+  }
+  return sum;
+}
+
+}  // namespace
+
+bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
+                    const EdgeLineOptions& options, EdgeFit* fit) {
+  const int n = static_cast<int>(values.size());
+  if (n < 7) return false;
+  const double h = options.step_px;
+  // Start: the steepest descent (the profile falls from inside to outside) within search_px.
+  int best = -1;
+  double steepest = 0.0;
+  for (int k = 1; k + 1 < n; ++k) {
+    const double s = first_offset_px + k * h;
+    if (std::abs(s) > options.search_px) continue;
+    const double slope = (values[k + 1] - values[k - 1]) / (2.0 * h);
+    if (best < 0 || slope < steepest) {
+      best = k;
+      steepest = slope;
+    }
+  }
+  if (best < 0 || !(steepest < 0.0)) return false;
+  const double mu0 = first_offset_px + best * h;
+  std::vector<double> s, p;
+  for (int k = 0; k < n; ++k) {
+    const double offset = first_offset_px + k * h;
+    if (std::abs(offset - mu0) <= options.fit_half_px + 1e-9) {
+      s.push_back(offset);
+      p.push_back(values[k]);
+    }
+  }
+  const int m = static_cast<int>(s.size());
+  if (m < 8) return false;
+
+  // Initial (a, g, b) by linear least squares at μ = μ0, w = 0.7, k = 0.
+  Params x;
+  x << 0.0, 0.0, 0.0, mu0, 0.7, 0.0;
+  {
+    Eigen::MatrixXd a(m, 3);
+    Eigen::VectorXd rhs(m);
+    for (int i = 0; i < m; ++i) {
+      a(i, 0) = 1.0;
+      a(i, 1) = s[i] - mu0;
+      a(i, 2) = NormalCdf((s[i] - x[3]) / x[4]);
+      rhs[i] = p[i];
+    }
+    const Eigen::Vector3d linear = a.colPivHouseholderQr().solve(rhs);
+    x[0] = linear[0];
+    x[1] = linear[1];
+    x[2] = linear[2];
+  }
+  Eigen::VectorXd r(m), r_new(m);
+  ParamsJacobian jacobian(m, kParams);
+  double rss = Residuals(s, p, mu0, x, &r, &jacobian);
+  double lambda = 1e-3;
+  bool converged = false;
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    const Eigen::Matrix<double, kParams, kParams> jtj = jacobian.transpose() * jacobian;
+    const Params jtr = jacobian.transpose() * r;
+    Eigen::Matrix<double, kParams, kParams> damped = jtj;
+    damped.diagonal() += lambda * jtj.diagonal().cwiseMax(1e-12);
+    const Params delta = -damped.ldlt().solve(jtr);
+    Params candidate = x + delta;
+    if (!candidate.allFinite()) return false;
+    candidate[4] = std::max(candidate[4], 0.05);
+    const double rss_new = Residuals(s, p, mu0, candidate, &r_new, nullptr);
+    if (rss_new <= rss) {
+      x = candidate;
+      rss = Residuals(s, p, mu0, x, &r, &jacobian);
+      lambda = std::max(lambda * 0.3, 1e-9);
+      if (std::abs(delta[3]) < 1e-4 && std::abs(delta[4]) < 1e-4) {
+        converged = true;
+        break;
+      }
+    } else {
+      lambda *= 10.0;
+      if (lambda > 1e8) {
+        converged = true;  // no further decrease possible: at a minimum within precision
+        break;
+      }
+    }
+  }
+  if (!converged) return false;
+  const Eigen::Matrix<double, kParams, kParams> jtj = jacobian.transpose() * jacobian;
+  Eigen::FullPivLU<Eigen::Matrix<double, kParams, kParams>> lu(jtj);
+  if (!lu.isInvertible()) return false;
+  const double noise_variance = rss / std::max(1, m - kParams);
+  const double variance = noise_variance * lu.inverse()(3, 3);
+  fit->mean_px = x[3];
+  fit->width_px = x[4];
+  fit->step = x[2];
+  fit->sigma_px = std::sqrt(std::max(0.0, variance));
+  if (!std::isfinite(fit->sigma_px)) return false;
+  if (std::abs(fit->mean_px) > options.search_px) return false;
+  if (fit->width_px < options.min_width_px || fit->width_px > options.max_width_px) return false;
+  // b < 0: the profile falls from inside (d̂ side) to outside.
+  if (!(-fit->step >= options.min_snr * std::sqrt(noise_variance))) return false;
+  return true;
+}
+
+StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Camera& camera,
+                                             const Eigen::Isometry3d& cam_from_rig,
+                                             const Eigen::Isometry3d& rig_from_objcentre,
+                                             const cv::Mat3b& image, const Silhouette& silhouette,
+                                             const EdgeLineOptions& options) {
+  BCOT_RETURN_IF_ERROR(options.Validate());
+  BCOT_RETURN_IF_ERROR(CheckSilhouetteInputs(camera, image, silhouette));
+  CorrespondenceLines result;
+  result.rig_from_objcentre = rig_from_objcentre;
+  const std::vector<ContourPoint>& contour = silhouette.contour;
+  if (contour.empty()) return result;
+  const Eigen::Isometry3d objcentre_from_template = caster.mesh().objcentre_from_template();
+  const Eigen::Isometry3d cam_from_objcentre = cam_from_rig * rig_from_objcentre;
+  const int count = static_cast<int>(contour.size());
+  const int num_candidates = std::min(options.num_lines, count);
+  const double h = options.step_px;
+  const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
+  std::vector<Eigen::Vector3d> colors(2 * half + 1);
+  std::vector<double> profile(2 * half + 1);
+  const cv::Mat1b& mask = silhouette.mask;
+  for (int j = 0; j < num_candidates; ++j) {
+    const ContourPoint& point = contour[static_cast<size_t>((j + 0.5) * count / num_candidates)];
+    ++result.candidates;
+    const Eigen::Vector2d first = point.pixel - half * h * point.normal;
+    const Eigen::Vector2d last = point.pixel + half * h * point.normal;
+    auto inside_image = [&](const Eigen::Vector2d& q) {
+      return q.x() >= 0.0 && q.y() >= 0.0 && q.x() < camera.width - 1.0 &&
+             q.y() < camera.height - 1.0;
+    };
+    if (!inside_image(first) || !inside_image(last)) {
+      ++result.rejected_off_image;
+      continue;
+    }
+    // The mask must be inside on the inner part and outside on the outer part of the window.
+    bool clean = true;
+    for (double t = 1.0; t <= options.window_px + 1e-9 && clean; t += 0.5) {
+      for (int side = -1; side <= 1; side += 2) {
+        const Eigen::Vector2d q = point.pixel + side * t * point.normal;
+        const bool in =
+            mask(static_cast<int>(std::lround(q.y())), static_cast<int>(std::lround(q.x()))) != 0;
+        if (in != (side < 0)) clean = false;
+      }
+    }
+    if (!clean) {
+      ++result.rejected_short;
+      continue;
+    }
+    CorrespondenceLine line;
+    line.centre = point.pixel;
+    line.normal = point.normal;
+    line.point_in_objcentre = objcentre_from_template * point.point_in_object;
+    const Eigen::Vector3d point_in_cam = cam_from_objcentre * line.point_in_objcentre;
+    if (!(point_in_cam.z() > 0.0)) {
+      ++result.rejected_off_image;
+      continue;
+    }
+    line.projection0 = camera.Project(point_in_cam);
+    Eigen::Vector3d inside = Eigen::Vector3d::Zero(), outside = Eigen::Vector3d::Zero();
+    int inside_count = 0, outside_count = 0;
+    for (int k = -half; k <= half; ++k) {
+      const double s = k * h;
+      colors[k + half] = SampleLinear(image, point.pixel + s * point.normal);
+      if (s <= -1.0) {
+        inside += colors[k + half];
+        ++inside_count;
+      } else if (s >= 1.0) {
+        outside += colors[k + half];
+        ++outside_count;
+      }
+    }
+    const Eigen::Vector3d d =
+        inside / std::max(1, inside_count) - outside / std::max(1, outside_count);
+    if (!(d.norm() >= options.min_contrast) || d.norm() == 0.0) {
+      ++result.rejected_ambiguous;
+      continue;
+    }
+    const Eigen::Vector3d direction = d.normalized();
+    for (int k = 0; k <= 2 * half; ++k) profile[k] = direction.dot(colors[k]);
+    EdgeFit fit;
+    if (!FitEdgeProfile(profile, -half * h, options, &fit)) {
+      ++result.rejected_ambiguous;
+      continue;
+    }
+    line.mean_px = fit.mean_px;
+    line.sigma_px = std::max(fit.sigma_px, options.min_sigma_px);
+    result.lines.push_back(line);
+  }
+  return result;
+}
+
+}  // namespace bcot
