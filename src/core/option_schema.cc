@@ -132,7 +132,8 @@ std::string HelpText(const std::vector<std::pair<const OptionInfo*, std::string>
 std::string ValueText(bool value) { return value ? "true" : "false"; }
 std::string ValueText(int value) { return fmt::format("{}", value); }
 std::string ValueText(double value) { return fmt::format("{}", value); }
-std::string ValueText(const std::string& value) { return FormatYamlString(value); }
+// Single-quoted, so a message shows where the value starts and ends ("object = 'a/b', ...").
+std::string ValueText(const std::string& value) { return "'" + value + "'"; }
 
 void EmitValue(YAML::Emitter& out, bool value) { out << ValueText(value); }
 void EmitValue(YAML::Emitter& out, int value) { out << ValueText(value); }

@@ -101,7 +101,8 @@ OptionSchema<ExportOptions>* BuildExportOptionSchema() {
           if (o.cameras[i].empty()) return fmt::format("must not hold an empty name ([{}])", i);
           for (size_t j = 0; j < i; ++j) {
             if (o.cameras[i] == o.cameras[j]) {
-              return fmt::format("must not list '{}' twice", o.cameras[i]);
+              return fmt::format("must not list '{}' twice (cameras[{}] repeats cameras[{}])",
+                                 o.cameras[i], i, j);
             }
           }
         }

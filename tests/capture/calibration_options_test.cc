@@ -39,8 +39,8 @@ TEST(CalibrationOptionsTest, ValidateListsEveryViolation) {
   ASSERT_FALSE(status.ok());
   for (const char* expected :
        {"board.inner_corners_x = 1", "board.square_size_mm = 0", "input.images_dir",
-        "input.cameras[1] = left, must not be listed twice",
-        "input.cameras[2] = a/b, must be usable as a folder name"}) {
+        "input.cameras[1] = 'left', must not be listed twice",
+        "input.cameras[2] = 'a/b', must be usable as a folder name"}) {
     EXPECT_THAT(status.message(), HasSubstr(expected));
   }
 }

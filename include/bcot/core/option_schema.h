@@ -438,7 +438,12 @@ class OptionSchema {
   std::string Example() const {
     if (options_.empty()) return "";
     const Options defaults{};
-    return options_.front()->info_.key + "=" + options_.front()->text_(defaults);
+    std::string value = options_.front()->text_(defaults);
+    // A string's message text is quoted ('bcot'); on a command line the bare value reads the same.
+    if (value.size() >= 2 && value.front() == '\'' && value.back() == '\'') {
+      value = value.substr(1, value.size() - 2);
+    }
+    return options_.front()->info_.key + "=" + value;
   }
 
   const std::vector<std::unique_ptr<Option>>& options() const { return options_; }
