@@ -32,9 +32,12 @@ def srgb_encode(v):
 
 def encode_image(path, image8, jpeg_quality):
     if jpeg_quality > 0:
-        ok, data = cv2.imencode(".jpg", image8, [cv2.IMWRITE_JPEG_QUALITY, int(jpeg_quality),
-                                                 cv2.IMWRITE_JPEG_SAMPLING_FACTOR,
-                                                 cv2.IMWRITE_JPEG_SAMPLING_FACTOR_420])
+        # libjpeg's default chroma subsampling is 4:2:0 (OpenCV 4.6's Python binding has no
+        # IMWRITE_JPEG_SAMPLING_FACTOR to ask for it explicitly).
+        params = [cv2.IMWRITE_JPEG_QUALITY, int(jpeg_quality)]
+        if hasattr(cv2, "IMWRITE_JPEG_SAMPLING_FACTOR"):
+            params += [cv2.IMWRITE_JPEG_SAMPLING_FACTOR, cv2.IMWRITE_JPEG_SAMPLING_FACTOR_420]
+        ok, data = cv2.imencode(".jpg", image8, params)
     else:
         ok, data = cv2.imencode(".png", image8)
     if not ok:

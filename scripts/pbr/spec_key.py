@@ -2,7 +2,6 @@
 spec and of the generator's scripts>, so a changed spec or generator renders anew.
   /usr/bin/python3 scripts/pbr/spec_key.py configs/pbr/bunny_plastic.json [--set k=v ...]
 """
-import glob
 import os
 import sys
 
@@ -13,5 +12,6 @@ args = sys.argv[1:]
 sets = [args[i + 1] for i in range(1, len(args) - 1) if args[i] == "--set"]
 spec = pc.load_spec(args[0], sets)
 here = os.path.dirname(os.path.abspath(__file__))
-scripts = sorted(glob.glob(os.path.join(here, "*.py")))
+# The generator's own files only (not this script or the bench table printer).
+scripts = [os.path.join(here, n) for n in ("pbr_common.py", "render_blender.py", "postprocess.py")]
 print(f"{spec['name']}-{pc.spec_hash(spec, scripts)}")
