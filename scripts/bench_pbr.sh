@@ -13,7 +13,9 @@
 # worst ‖t‖, lost frames (> 5° or > 50 mm), CPU ms per frame (user + sys of `bcot annotate` / frames);
 # errors in each camera's frame at the object's bounding-box centre (tests/bench/pbr_errors),
 # plus the bias per 10-frame block for the annotate setting. Extra `bcot annotate` arguments:
-# BCOT_PBR_ANNOTATE_ARGS (e.g. "--set solver.rounds=3"). Needs scripts/setup.sh --with-blender.
+# BCOT_PBR_ANNOTATE_ARGS (e.g. "--set solver.rounds=3"); BCOT_PBR_REUSE_ANN=1 keeps finished
+# annotations (out/pbr/ann/<seq>/<setting>/DONE) instead of redoing them (only valid when
+# neither bcot nor the arguments changed). Needs scripts/setup.sh --with-blender.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 specs=("$@")
@@ -46,12 +48,14 @@ for spec in "${specs[@]}"; do
       cam0) args=(--config configs/annotate.yaml --set 'views.cameras=[cam0]') ;;
     esac
     ann=$root/ann/$key/$variant
-    rm -rf "$ann"
-    mkdir -p "$(dirname "$ann")"
-    echo "bench_pbr: $key $variant" >&2
-    TIMEFORMAT='%U %S'
-    { time nice build/bcot annotate "$seq" --out "$ann" "${args[@]}" "${extra[@]}" >"$ann.log" 2>&1; } 2>"$ann.time" ||
-      { echo "bench_pbr: bcot annotate failed, see $ann.log" >&2; exit 1; }
+    if [ "${BCOT_PBR_REUSE_ANN:-0}" != 1 ] || [ ! -f "$ann/DONE" ] || [ ! -s "$ann.time" ]; then
+      rm -rf "$ann"
+      mkdir -p "$(dirname "$ann")"
+      echo "bench_pbr: $key $variant" >&2
+      TIMEFORMAT='%U %S'
+      { time nice build/bcot annotate "$seq" --out "$ann" "${args[@]}" "${extra[@]}" >"$ann.log" 2>&1; } 2>"$ann.time" ||
+        { echo "bench_pbr: bcot annotate failed, see $ann.log" >&2; exit 1; }
+    fi
     cpu_ms=$(awk -v n="$frames" '{printf "%.0f", ($1 + $2) * 1000 / n}' "$ann.time")
     blocks=()
     [ "$variant" = annotate ] && blocks=(--blocks 10)
