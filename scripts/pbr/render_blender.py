@@ -13,8 +13,9 @@ Camera conversion: Blender's camera looks down −z with y up, so its world matr
 world_from_cam(OpenCV) · diag(1, −1, −1). Blender's pixel i covers [i, i+1) (centre i + ½)
 whereas bcot's pixel centre is at integer i, so the principal point in Blender's pixel
 coordinates is (cx + ½, cy + ½); it is set through shift_x / shift_y (units of the image
-width with sensor_fit HORIZONTAL), the focal length through lens / sensor_width, fy/fx
-through the pixel aspect.
+width with sensor_fit HORIZONTAL; shift_y in fy-scaled units, hence the factor fx/fy), the
+focal length through lens / sensor_width, fy/fx through the pixel aspect (pixel_aspect_x /
+pixel_aspect_y = fy/fx). pbr_gt_check verified fy/fx = 0.95, 1 and 1.05 to ~0.01 px.
 """
 import argparse
 import json
@@ -273,7 +274,7 @@ def main():
         cd.sensor_width = 36.0
         cd.lens = fx * cd.sensor_width / w
         cd.shift_x = (0.5 * w - (cx + 0.5)) / w
-        cd.shift_y = ((cy + 0.5) - 0.5 * h) / w
+        cd.shift_y = ((cy + 0.5) - 0.5 * h) / w * fx / fy
         cd.clip_start = 0.01
         cd.clip_end = 50.0
         if rs["dof_fstop"] > 0:
@@ -289,7 +290,7 @@ def main():
         cams.append((c, co, fx, fy))
     # Pixel aspect (fy/fx): Blender scales x when pixel_aspect_x > pixel_aspect_y.
     fx0, fy0 = cams[0][2], cams[0][3]
-    r.pixel_aspect_x, r.pixel_aspect_y = (1.0, fx0 / fy0) if fy0 >= fx0 else (fy0 / fx0, 1.0)
+    r.pixel_aspect_x, r.pixel_aspect_y = (fy0 / fx0, 1.0) if fy0 >= fx0 else (1.0, fx0 / fy0)
 
     with open(os.path.join(args.raw, "plan.json"), "w") as f:
         json.dump(plan, f)
