@@ -6,6 +6,8 @@
 #   scripts/pbr_synth.sh configs/pbr/bunny_plastic.json out/pbr/bunny [--set render.samples=16 ...]
 # Needs `scripts/setup.sh --with-blender`. The sequence is built in OUT.partial/ (an interrupted
 # render resumes there) and renamed to OUT only when complete. Threads: BCOT_PBR_THREADS (2).
+# BCOT_PBR_KEEP_RAW=1 keeps Blender's raw renders in OUT/raw (to re-run only the sensor model,
+# scripts/pbr/postprocess.py, with other sensor.* settings).
 set -euo pipefail
 if [ $# -lt 2 ]; then sed -n '2,9p' "$0"; exit 2; fi
 spec=$1 out=$2
@@ -26,6 +28,6 @@ nice blender -b --factory-startup --python-exit-code 1 --python "$here/pbr/rende
   --spec "$spec" --raw "$partial/raw" "${sets[@]}" >"$partial/blender.log" 2>&1 ||
   { echo "pbr_synth: Blender failed, see $partial/blender.log" >&2; tail -20 "$partial/blender.log" >&2; exit 1; }
 /usr/bin/python3 "$here/pbr/postprocess.py" --spec "$spec" --raw "$partial/raw" --out "$partial" "${sets[@]}"
-rm -rf "$partial/raw"
+[ "${BCOT_PBR_KEEP_RAW:-0}" = 1 ] || rm -rf "$partial/raw"
 mv "$partial" "$out"
 echo "pbr_synth: wrote $out ($(cat "$out/pbr_timing.json"))"
