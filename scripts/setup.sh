@@ -1,7 +1,20 @@
 #!/usr/bin/env bash
 # Installs every Debian package bcot needs to build, test and benchmark.
 # Idempotent and non-interactive; nothing else is downloaded at build or run time.
+#   scripts/setup.sh                 # build, test and benchmark packages
+#   scripts/setup.sh --with-blender  # also Blender (Cycles, headless), NumPy and OpenCV for the
+#                                    # physically based render path (scripts/pbr_synth.sh,
+#                                    # scripts/bench_pbr.sh); not needed for demo.sh / test.sh
 set -euo pipefail
+
+with_blender=0
+for arg in "$@"; do
+  case "$arg" in
+    --with-blender) with_blender=1 ;;
+    -h|--help) sed -n '2,7p' "$0"; exit 0 ;;
+    *) echo "setup: unknown option $arg" >&2; exit 2 ;;
+  esac
+done
 
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -13,6 +26,9 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium   # headless renders of the HTML reports in the tests labelled `browser`
 )
+if [ "$with_blender" -eq 1 ]; then
+  packages+=(blender python3-numpy python3-opencv)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

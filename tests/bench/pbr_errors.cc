@@ -1,0 +1,106 @@
+// Per-camera pose errors of an annotation against a sequence's ground truth, for
+// scripts/bench_pbr.sh (issue 12).
+//
+// For each camera of the rig, poses cam_from_object = cam_from_rig · rig_from_object (the
+// annotation's rig_from_object.txt and the sequence's gt/rig_from_object.txt) are compared at
+// the object's bounding-box centre c (mesh as the annotator loads it): e = T·c − G·c in that
+// camera's axes (mm), rotation error = angle(R·R_gtᵀ) (deg). One tab-separated line per camera:
+//   camera frames rot_mean rot_max abs_x abs_y abs_z bias_x bias_y bias_z std_x std_y std_z
+//   worst_t lost
+// (bias = mean signed error, std = its standard deviation, worst_t = max ‖e‖, lost = frames
+// with > 5° or > 50 mm). --blocks N adds lines `camera#b` for consecutive blocks of N frames.
+//   build/tests/bench/pbr_errors SEQ ANNOTATION_DIR [--blocks 10]
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "bcot/core/pose_io.h"
+#include "bcot/core/sequence.h"
+#include "bcot/render/mesh.h"
+
+namespace {
+
+void PrintStats(const std::string& name, const std::vector<double>& rot,
+                const std::vector<Eigen::Vector3d>& err) {
+  const int n = static_cast<int>(rot.size());
+  if (n == 0) return;
+  double rot_sum = 0, rot_max = 0, worst = 0;
+  int lost = 0;
+  Eigen::Vector3d abs_sum = Eigen::Vector3d::Zero(), sum = Eigen::Vector3d::Zero();
+  for (int i = 0; i < n; ++i) {
+    rot_sum += rot[i];
+    rot_max = std::max(rot_max, rot[i]);
+    worst = std::max(worst, err[i].norm());
+    abs_sum += err[i].cwiseAbs();
+    sum += err[i];
+    if (rot[i] > 5.0 || err[i].norm() > 50.0) ++lost;
+  }
+  const Eigen::Vector3d mean = sum / n;
+  Eigen::Vector3d var = Eigen::Vector3d::Zero();
+  for (int i = 0; i < n; ++i) var += (err[i] - mean).cwiseAbs2();
+  const Eigen::Vector3d sd = n > 1 ? Eigen::Vector3d((var / (n - 1)).cwiseSqrt()) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d abs_mean = abs_sum / n;
+  std::printf("%s\n", fmt::format("{}\t{}\t{:.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{:+.4f}\t{:+.4f}\t"
+                                  "{:+.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{}",
+                                  name, n, rot_sum / n, rot_max, abs_mean.x(), abs_mean.y(),
+                                  abs_mean.z(), mean.x(), mean.y(), mean.z(), sd.x(), sd.y(),
+                                  sd.z(), worst, lost)
+                          .c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Per-camera pose errors (bias and spread per axis) at the bounding-box centre"};
+  std::string seq_dir, ann_dir;
+  int blocks = 0;
+  app.add_option("sequence", seq_dir)->required();
+  app.add_option("annotation", ann_dir)->required();
+  app.add_option("--blocks", blocks, "also per block of N consecutive frames");
+  CLI11_PARSE(app, argc, argv);
+
+  auto seq = bcot::LoadSequence(seq_dir, /*require_init_pose=*/false);
+  if (!seq.ok()) {
+    std::fprintf(stderr, "%s\n", seq.status().message().c_str());
+    return 2;
+  }
+  auto mesh = bcot::Mesh::Load(seq->object.mesh_path, seq->object.unit_to_mm);
+  auto truth = bcot::ReadPoseFile(seq_dir + "/gt/rig_from_object.txt");
+  auto est = bcot::ReadPoseFile(ann_dir + "/rig_from_object.txt");
+  for (const bcot::Status& s : {mesh.status(), truth.status(), est.status()}) {
+    if (!s.ok()) {
+      std::fprintf(stderr, "%s\n", s.message().c_str());
+      return 2;
+    }
+  }
+  if (truth->size() != est->size()) {
+    std::fprintf(stderr, "%zu ground-truth poses, %zu annotated\n", truth->size(), est->size());
+    return 2;
+  }
+  const Eigen::Vector3d centre = mesh->bbox_center();
+  for (int view = 0; view < seq->rig.size(); ++view) {
+    const auto& rc = seq->rig[view];
+    std::vector<double> rot;
+    std::vector<Eigen::Vector3d> err;
+    for (size_t i = 0; i < truth->size(); ++i) {
+      const Eigen::Isometry3d g = rc.cam_from_rig * truth->at(i);
+      const Eigen::Isometry3d t = rc.cam_from_rig * est->at(i);
+      const Eigen::AngleAxisd d(t.linear() * g.linear().transpose());
+      rot.push_back(std::abs(d.angle()) * 180.0 / M_PI);
+      err.push_back(t * centre - g * centre);
+    }
+    PrintStats(rc.camera.name, rot, err);
+    for (int b = 0; blocks > 0 && b * blocks < static_cast<int>(rot.size()); ++b) {
+      const int lo = b * blocks, hi = std::min<int>(rot.size(), lo + blocks);
+      PrintStats(fmt::format("{}#{}", rc.camera.name, b),
+                 std::vector<double>(rot.begin() + lo, rot.begin() + hi),
+                 std::vector<Eigen::Vector3d>(err.begin() + lo, err.begin() + hi));
+    }
+  }
+  return 0;
+}
