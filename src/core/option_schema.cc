@@ -85,7 +85,7 @@ std::vector<std::string> ElementViolations(const OptionInfo& info, const std::st
   if (!info.one_of.empty()) {
     for (size_t i = 0; i < strings.size(); ++i) {
       if (std::find(info.one_of.begin(), info.one_of.end(), strings[i]) == info.one_of.end()) {
-        add(i, FormatYamlString(strings[i]),
+        add(i, ValueText(strings[i]),
             fmt::format("must be one of {}", fmt::join(info.one_of, ", ")));
       }
     }
@@ -93,7 +93,7 @@ std::vector<std::string> ElementViolations(const OptionInfo& info, const std::st
   if (info.element_rule) {
     for (size_t i = 0; i < strings.size(); ++i) {
       const std::string rule = info.element_rule(strings, i);
-      if (!rule.empty()) add(i, FormatYamlString(strings[i]), rule);
+      if (!rule.empty()) add(i, ValueText(strings[i]), rule);
     }
   }
   return violations;

@@ -116,9 +116,9 @@ TEST(SynthOptionsTest, ListsEveryOutOfRangeValueWithItsLine) {
   EXPECT_THAT(message, HasSubstr("range.yaml:2: object.size_mm = -3, must be in [0, 5000]"));
   EXPECT_THAT(message, HasSubstr("range.yaml:4: cameras.hfov_deg = 200"));
   EXPECT_THAT(message, HasSubstr("range.yaml:5: cameras.cone_angles_deg[1] = 130"));
-  EXPECT_THAT(message, HasSubstr("range.yaml:7: motion.mode = fly"));
+  EXPECT_THAT(message, HasSubstr("range.yaml:7: motion.mode = 'fly'"));
   EXPECT_THAT(message, HasSubstr("range.yaml:8: motion.fps = 0"));
-  EXPECT_THAT(message, HasSubstr("range.yaml:10: background.kinds[1] = marble"));
+  EXPECT_THAT(message, HasSubstr("range.yaml:10: background.kinds[1] = 'marble'"));
   EXPECT_EQ(message.find('\n'), std::string::npos) << "one line";
 
   SynthOptions direct;

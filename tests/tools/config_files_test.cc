@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "bcot/annotate/annotate_options.h"
+#include "bcot/core/file_util.h"
 #include "bcot/eval/evaluator.h"
 #include "bcot/export/exporter.h"
 #include "bcot/synth/synth_options.h"
@@ -31,6 +33,13 @@ TEST(ConfigFilesTest, EveryFileInConfigsLoadsWithItsReader) {
       status = ReadSynthOptions(path).status();
     } else if (name == "capture.yaml" || name == "calibrate.yaml") {
       continue;
+    } else if (parent == "pbr" && entry.path().extension() == ".json") {
+      // Scene specs of the Blender render path (scripts/pbr reads them): a JSON object.
+      const StatusOr<std::string> text = ReadTextFile(path);
+      const nlohmann::json json =
+          text.ok() ? nlohmann::json::parse(*text, nullptr, /*allow_exceptions=*/false)
+                    : nlohmann::json();
+      status = json.is_object() ? Status::Ok() : Status::InvalidInput("not a JSON object");
     } else {
       ADD_FAILURE() << path << ": no reader known to this test";
       continue;
