@@ -5,6 +5,9 @@
 # using each build, and compares rig_from_object.txt, <camera>/pose.txt, quality.csv and
 # frames.csv (without its wall-time column) byte for byte.
 # Usage: scripts/compare_builds.sh BCOT_BEFORE BCOT_AFTER [work dir, default out/compare_builds]
+# Environment: BCOT_CONFIGS_BEFORE, BCOT_CONFIGS_AFTER: the configs/ folder each build reads
+# (default configs/; an older build may not know a newer config's sections, e.g.
+# `git archive REV configs | tar -x -C /tmp/old` gives the configs of revision REV).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ $# -lt 2 ]; then
@@ -20,12 +23,16 @@ mkdir -p "$work/seq"
 [ -f "$work/seq/glossy/rig.yaml" ] ||
   "$before" synth --config configs/synth/glossy_fast.yaml --out "$work/seq/glossy" \
     --set motion.num_frames=20
+configs_before=${BCOT_CONFIGS_BEFORE:-configs}
+configs_after=${BCOT_CONFIGS_AFTER:-configs}
 for side in before after; do
   bin=${!side}
+  configs_var=configs_$side
+  configs=${!configs_var}
   rm -rf "${work:?}/$side"
-  "$bin" batch "$work/seq" --out "$work/$side/ann" --config configs/annotate.yaml --jobs 1 \
+  "$bin" batch "$work/seq" --out "$work/$side/ann" --config "$configs/annotate.yaml" --jobs 1 \
     >/dev/null 2>&1 || true  # a rejected sequence exits 1; the files are compared below
-  "$bin" annotate "$work/seq/demo" --out "$work/$side/track" --config configs/track.yaml \
+  "$bin" annotate "$work/seq/demo" --out "$work/$side/track" --config "$configs/track.yaml" \
     --quiet 2>/dev/null || true
 done
 status=0
