@@ -110,7 +110,7 @@ TEST(AnnotateOptionsTest, UnknownKeyNamesFileLineAndKey) {
       ReadAnnotateOptions(test::SourcePath("configs/track.yaml"), {"windoww.size=3"});
   EXPECT_THAT(typo.status().message(),
               HasSubstr("--set windoww: unknown key (did you mean 'window'?); known keys: color, "
-                        "cost, frame, lines, quality, region, tracker, views, window"));
+                        "cost, edge, frame, lines, quality, region, tracker, views, window"));
 }
 
 TEST(AnnotateOptionsTest, OutOfRangeValuesNameTheirLineAndKey) {
