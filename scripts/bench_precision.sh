@@ -19,17 +19,23 @@
 # Environment: BCOT_BENCH_WORK (sequence cache, default out/bench_precision),
 #              BCOT_BENCH_OBJECTS (comma-separated meshes; default 2 bundled + 3 shared ones),
 #              BCOT_BENCH_ENERGY_OBJECTS (meshes of the energy protocol; `mesh+glossy` renders
-#              a glossy object), BCOT_BENCH_ONLY=energies (run only the energy protocol).
+#              a glossy object), BCOT_BENCH_ONLY=energies (run only the energy protocol),
+#              BCOT_BENCH_BUILD (build dir, default build-bench), BCOT_BENCH_SET (extra --set
+#              overrides of the annotate/track config, space-separated, e.g. edge.enabled=false).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 frames=${1:-100}
 energy_frames=${2:-40}
 work=${BCOT_BENCH_WORK:-out/bench_precision}
-dir=build-bench
-cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
-  -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
+dir=${BCOT_BENCH_BUILD:-build-bench}
+if [ ! -f "$dir/CMakeCache.txt" ]; then
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
+    -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
+fi
 cmake --build "$dir" --target precision_bench
 bench="$dir/tests/bench/precision_bench"
+sets=()
+for s in ${BCOT_BENCH_SET:-}; do sets+=(--set "$s"); done
 
 objects=${BCOT_BENCH_OBJECTS:-}
 if [ -z "$objects" ]; then
@@ -53,30 +59,30 @@ if [ -z "$energy_objects" ]; then
 fi
 for size in 640x480 960x768; do
   echo "== 90° binocular (C-0/C-1), $size, annotation setting, per energy, one thread"
-  "$bench" --config configs/annotate.yaml --work "$work/bin90" --frames "$energy_frames" \
+  "$bench" "${sets[@]}" --config configs/annotate.yaml --work "$work/bin90" --frames "$energy_frames" \
     --objects "$energy_objects" --settings C-0/C-1 --energies dense,sparse,combined \
     --synth-set cameras.width="${size%x*}" --synth-set cameras.height="${size#*x}" \
     --synth-set "cameras.arc_angles_deg=[90]" --synth-set "cameras.cone_angles_deg=[]"
   echo
 done
 echo "== Speed per energy: C-0/C-1 (90°), 640x480, tracking setting (configs/track.yaml), one thread"
-"$bench" --config configs/track.yaml --work "$work/bin90" --frames "$energy_frames" \
+"$bench" "${sets[@]}" --config configs/track.yaml --work "$work/bin90" --frames "$energy_frames" \
   --objects "$energy_objects" --settings C-0/C-1 --energies dense,sparse,combined \
   --synth-set "cameras.arc_angles_deg=[90]" --synth-set "cameras.cone_angles_deg=[]"
 if [ "${BCOT_BENCH_ONLY:-}" = energies ]; then exit 0; fi
 echo
 
 echo "== Table 3 protocol, 640x480, annotation setting (configs/annotate.yaml)"
-"$bench" --config configs/annotate.yaml --work "$work" --frames "$frames" --objects "$objects"
+"$bench" "${sets[@]}" --config configs/annotate.yaml --work "$work" --frames "$frames" --objects "$objects"
 
 echo
 echo "== Speed: C-0/C-7 (90°), 640x480, tracking setting (configs/track.yaml), one thread"
-"$bench" --config configs/track.yaml --work "$work" --frames "$frames" --objects "$objects" \
+"$bench" "${sets[@]}" --config configs/track.yaml --work "$work" --frames "$frames" --objects "$objects" \
   --settings C-0/C-7
 
 echo
 echo "== C-0 and C-0 + 90° camera at 1280x1024, annotation setting, one thread"
-"$bench" --config configs/annotate.yaml --work "$work" --frames "$((frames < 30 ? frames : 30))" \
+"$bench" "${sets[@]}" --config configs/annotate.yaml --work "$work" --frames "$((frames < 30 ? frames : 30))" \
   --objects "$objects" --settings C-0,C-0/C-1 \
   --synth-set cameras.width=1280 --synth-set cameras.height=1024 \
   --synth-set "cameras.arc_angles_deg=[90]" --synth-set "cameras.cone_angles_deg=[]"

@@ -183,8 +183,8 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "sigma", "Huber threshold of the edge residuals")
       .Range(Positive());
   s->Add(
-       "edge.num_lines", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.num_lines; },
-       "", "edge lines per view, evenly spaced along the contour")
+       "edge.num_lines", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.num_lines; }, "",
+       "edge lines per view, evenly spaced along the contour")
       .Range(AtLeast(1));
   s->Add(
        "edge.search_px", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.search_px; },
@@ -350,6 +350,10 @@ void DeclareViewsAndWindow(OptionSchema<AnnotateOptions>* s) {
        "window.robust_rotation_deg", [](auto& o) -> auto& { return o.window.robust_rotation_deg; },
        "deg", "Cauchy threshold of the rotation prior")
       .Range(NonNegative());
+  s->Add(
+      "window.edge_posterior", [](auto& o) -> auto& { return o.window.edge_posterior; }, "",
+      "a frame refined by the edge stage enters the window as its edge pose posterior "
+      "(false: its region terms)");
   s->Add(
        "window.num_threads", [](auto& o) -> auto& { return o.window.num_threads; }, "",
        "Ceres threads per window")

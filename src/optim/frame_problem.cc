@@ -1,5 +1,6 @@
 #include "bcot/optim/frame_problem.h"
 
+#include <ceres/crs_matrix.h>
 #include <ceres/loss_function.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
@@ -185,6 +186,37 @@ void AddDamping(const FrameProblemOptions& options, const std::vector<ViewTempla
       parameters);
 }
 
+// The pose posterior of a solved edge problem at its solution `pose`: information H = JᵀJ of
+// its (whitened, Huber-reweighted) residuals in the tangent of Se3Manifold, scaled by the
+// inverse of the a posteriori variance factor s² = Σρ(r²)/(m − 6) when that exceeds 1 (the
+// lines scatter about the fitted pose more than their σ_μ say: model errors, correlated
+// shading along the contour). Null when H is singular.
+std::shared_ptr<const PoseGaussian> EdgePosterior(ceres::Problem* problem,
+                                                  const Eigen::Isometry3d& pose) {
+  double cost = 0.0;
+  ceres::CRSMatrix jacobian;
+  if (!problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, &jacobian)) {
+    return nullptr;
+  }
+  if (jacobian.num_cols != kPoseTangentSize || jacobian.num_rows <= kPoseTangentSize) {
+    return nullptr;
+  }
+  Matrix6d information = Matrix6d::Zero();
+  for (int row = 0; row < jacobian.num_rows; ++row) {
+    Vector6d j = Vector6d::Zero();
+    for (int k = jacobian.rows[row]; k < jacobian.rows[row + 1]; ++k) {
+      j[jacobian.cols[k]] = jacobian.values[k];
+    }
+    information += j * j.transpose();
+  }
+  const double variance_factor = 2.0 * cost / (jacobian.num_rows - kPoseTangentSize);
+  if (variance_factor > 1.0) information /= variance_factor;
+  auto gaussian = std::make_shared<PoseGaussian>();
+  gaussian->mean = pose;
+  if (!SqrtInformation(information, &gaussian->sqrt_information)) return nullptr;
+  return gaussian;
+}
+
 }  // namespace
 
 FrameProblem::FrameProblem(const RayCaster& caster, const FrameProblemOptions& options)
@@ -320,7 +352,7 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
       linearisations->clear();
       for (const ViewTemplate& t : templates) {
         linearisations->push_back({*views[t.view].camera, views[t.view].cam_from_rig,
-                                   t.region_template, t.cost, t.lines, t.line_weight});
+                                   t.region_template, t.cost, t.lines, t.line_weight, nullptr});
       }
     }
     const Eigen::Isometry3d round_end = FromPoseParameters(x.data());
@@ -337,10 +369,15 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
   if (options_.edge.enabled) {
     const FrameSummary region_summary = summary;
     const PoseParameters region_x = x;
-    if (!RefineEdges(views, x.data(), &summary)) {
+    std::shared_ptr<const PoseGaussian> posterior;
+    if (!RefineEdges(views, x.data(), &summary, linearisations != nullptr ? &posterior : nullptr)) {
       // Too few edge lines or a failed solve: keep the region result.
       x = region_x;
       summary = region_summary;
+    } else if (linearisations != nullptr && posterior != nullptr) {
+      for (ViewLinearisation& linearisation : *linearisations) {
+        linearisation.edge_posterior = posterior;
+      }
     }
   }
   *rig_from_objcentre = FromPoseParameters(x.data());
@@ -348,7 +385,9 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
 }
 
 bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* parameters,
-                               FrameSummary* summary) const {
+                               FrameSummary* summary,
+                               std::shared_ptr<const PoseGaussian>* posterior) const {
+  if (posterior != nullptr) posterior->reset();
   const EdgeRefineOptions& edge = options_.edge;
   const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
   // Model points are read from the contour only: a coarse point stride saves closest hits.
@@ -392,6 +431,7 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
       summary->views[v].edge_lines = static_cast<int>(lines->lines.size());
     }
     const Eigen::Isometry3d round_end = FromPoseParameters(parameters);
+    if (posterior != nullptr) *posterior = EdgePosterior(&problem, round_end);
     const double moved_deg = RotationDistanceDeg(linearisation_pose.linear(), round_end.linear());
     const double moved_mm = (round_end.translation() - linearisation_pose.translation()).norm();
     if (moved_deg < options_.round_tolerance_deg && moved_mm < options_.round_tolerance_mm) break;

@@ -13,6 +13,7 @@
 #include "bcot/core/se3.h"
 #include "bcot/optim/correspondence_line_cost.h"
 #include "bcot/optim/motion_prior_cost.h"
+#include "bcot/optim/pose_gaussian_cost.h"
 #include "bcot/optim/region_cost.h"
 #include "bcot/optim/se3_manifold.h"
 #include "violations.h"
@@ -120,7 +121,15 @@ WindowSummary WindowProblem::Solve(
     if (in_window && frame_views[t - first] != nullptr && !frame_views[t - first]->empty()) {
       free[t - lo] = true;
       ++summary.free_frames;
-      for (const ViewLinearisation& view : *frame_views[t - first]) {
+      const std::vector<ViewLinearisation>& views = *frame_views[t - first];
+      if (options_.edge_posterior && views.front().edge_posterior != nullptr) {
+        // The frame's edge posterior replaces its region terms (window_problem.h).
+        ++summary.edge_frames;
+        problem.AddResidualBlock(new PoseGaussianCost(*views.front().edge_posterior), nullptr,
+                                 block);
+        continue;
+      }
+      for (const ViewLinearisation& view : views) {
         if (view.region_template != nullptr) {
           AddRegionResidualBlocks(view.camera, view.cam_from_rig, view.region_template, view.cost,
                                   block, &problem);

@@ -4,10 +4,12 @@
 // One row per run: `bcot synth` a sequence (--synth-config, default
 // configs/synth/shaded_rim.yaml, plus --synth-set overrides: light direction, material), track
 // frames 1..N−1 from the ground truth of frame 0 with every camera (MultiViewTracker::Track with
-// the annotate config, the per-frame solve of `bcot annotate`), and print per camera, in that
+// the annotate config, the per-frame solve of `bcot annotate`; then its temporal window when the
+// config has it on, as `bcot annotate` does), and print per camera, in that
 // camera's frame at the object's bounding-box centre: mean rotation error, mean |t| per axis,
 // mean signed t per axis ± its standard deviation (the bias), lost frames (> 5° or 50 mm,
-// reset to the truth), CPU ms/frame; plus the boundary contrast of the images at the true pose.
+// reset to the truth), CPU ms/frame (with the window); plus the boundary contrast of the images at
+// the true pose.
 //
 // Boundary contrast (per view, over the true contour of every 5th frame): mean ‖I(inside) −
 // I(outside)‖ / mean ‖I(outside) − I(outside far)‖, with I the mean 8-bit RGB over s ∈ [−3, −1]
@@ -34,6 +36,7 @@
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bcot/annotate/annotate_options.h"
@@ -45,6 +48,7 @@
 #include "bcot/optim/edge_lines.h"
 #include "bcot/optim/multi_view_tracker.h"
 #include "bcot/optim/silhouette.h"
+#include "bcot/optim/window_problem.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
 #include "bcot/synth/synth_options.h"
@@ -244,36 +248,63 @@ int main(int argc, char** argv) {
   double cpu_ms = 0.0;
   Eigen::Isometry3d rig_from_objcentre = objcentre((*truth)[0]);
   if (!(*tracker)->Reset(load_images(0), rig_from_objcentre).ok()) return 1;
+  // The temporal window of the annotate config, when it is on, refines the per-frame poses
+  // like `bcot annotate` does (frame 0 and lost frames held at the truth they were reset to).
+  std::unique_ptr<WindowSmoother> window;
+  if (options->window.enabled) window = std::make_unique<WindowSmoother>(options->window);
+  std::vector<Eigen::Isometry3d> poses = {rig_from_objcentre};
+  std::vector<bool> counted = {false};
+  if (window) window->Push(rig_from_objcentre, {});
   for (int frame = 1; frame < sequence->num_frames; ++frame) {
     const std::vector<cv::Mat3b> images = load_images(frame);
     const std::clock_t start = std::clock();
-    StatusOr<FrameSummary> summary = (*tracker)->Track(images, &rig_from_objcentre);
+    std::vector<ViewLinearisation> linearisations;
+    StatusOr<FrameSummary> summary = (*tracker)->Track(
+        images, &rig_from_objcentre, window != nullptr ? &linearisations : nullptr);
     cpu_ms += 1000.0 * static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
     ++timed;
     if (!summary.ok()) return Fail(summary.status());
     const Eigen::Isometry3d expected_rig = objcentre((*truth)[frame]);
     bool is_lost = false;
-    std::vector<std::pair<double, Eigen::Vector3d>> errors;
     for (int c = 0; c < num_views; ++c) {
       const Eigen::Isometry3d estimate = sequence->rig[c].cam_from_rig * rig_from_objcentre;
       const Eigen::Isometry3d expected = sequence->rig[c].cam_from_rig * expected_rig;
       const double rotation = RotationDistanceDeg(estimate.linear(), expected.linear());
       const Eigen::Vector3d t = estimate.translation() - expected.translation();
       if (rotation > 5.0 || t.norm() > 50.0) is_lost = true;
-      errors.emplace_back(rotation, t);
     }
     if (is_lost) {
       ++lost;
       rig_from_objcentre = expected_rig;
       if (!(*tracker)->Reset(images, rig_from_objcentre).ok()) return 1;
-      continue;
+      linearisations.clear();
     }
+    poses.push_back(rig_from_objcentre);
+    counted.push_back(!is_lost);
+    if (window) {
+      const std::clock_t window_start = std::clock();
+      window->Push(rig_from_objcentre, std::move(linearisations));
+      cpu_ms += 1000.0 * static_cast<double>(std::clock() - window_start) / CLOCKS_PER_SEC;
+    }
+  }
+  if (window) {
+    const std::clock_t window_start = std::clock();
+    window->Finish();
+    cpu_ms += 1000.0 * static_cast<double>(std::clock() - window_start) / CLOCKS_PER_SEC;
+    poses = window->rig_from_objcentre();
+  }
+  for (int frame = 1; frame < sequence->num_frames; ++frame) {
+    if (!counted[frame]) continue;
+    const Eigen::Isometry3d expected_rig = objcentre((*truth)[frame]);
     for (int c = 0; c < num_views; ++c) {
+      const Eigen::Isometry3d estimate = sequence->rig[c].cam_from_rig * poses[frame];
+      const Eigen::Isometry3d expected = sequence->rig[c].cam_from_rig * expected_rig;
+      const Eigen::Vector3d t = estimate.translation() - expected.translation();
       CameraStats& s = stats[c];
-      s.rotation += errors[c].first;
-      s.abs_sum += errors[c].second.cwiseAbs();
-      s.sum += errors[c].second;
-      s.square_sum += errors[c].second.cwiseProduct(errors[c].second);
+      s.rotation += RotationDistanceDeg(estimate.linear(), expected.linear());
+      s.abs_sum += t.cwiseAbs();
+      s.sum += t;
+      s.square_sum += t.cwiseProduct(t);
       ++s.frames;
     }
   }

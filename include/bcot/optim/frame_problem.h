@@ -39,6 +39,7 @@
 #include "bcot/optim/color_model.h"
 #include "bcot/optim/correspondence_lines.h"
 #include "bcot/optim/edge_lines.h"
+#include "bcot/optim/pose_gaussian_cost.h"
 #include "bcot/optim/region_cost.h"
 #include "bcot/optim/region_template.h"
 #include "bcot/render/ray_caster.h"
@@ -60,9 +61,9 @@ const char* RegionEnergyName(RegionEnergy energy);
 // posteriors' crossing inward, the edge's is not. Skipped (the region result kept) when all
 // views together have fewer than min_lines lines.
 struct EdgeRefineOptions {
-  // Off by default: the temporal window still refines on the region templates and pulls the
-  // poses back towards the region minima (window_problem_test); see README.
-  bool enabled = false;
+  // On by default (annotation); the temporal window takes each frame's edge pose posterior as
+  // its data term (window_problem.h). configs/track.yaml switches it off for speed.
+  bool enabled = true;
   // Re-rendered edge solves; >= 1.
   int rounds = 2;
   // Ceres iterations per edge solve; >= 1.
@@ -176,6 +177,11 @@ struct ViewLinearisation {
   // The sparse term (null when the energy is dense) and its weight w_v · lines.weight.
   std::shared_ptr<const CorrespondenceLines> lines;
   double line_weight = 0.0;
+  // Set when the frame ended with the edge stage, the same on every view of the frame: the
+  // frame's pose posterior from its edge lines (mean = the frame's final pose, information =
+  // JᵀJ of the whitened edge residuals of all views at that pose; pose_gaussian_cost.h). The
+  // window uses it in place of the frame's region terms (window_problem.h).
+  std::shared_ptr<const PoseGaussian> edge_posterior;
 };
 
 class FrameProblem {
@@ -189,9 +195,9 @@ class FrameProblem {
   // residuals. CHECKs that views are complete and images match their cameras.
   // When `linearisations` is not null it receives the level-0 templates of the last round
   // (views without band pixels left out); it is cleared when !summary.usable(). These are the
-  // region rounds' templates also after an edge stage (a window on the edge lines, weighted
-  // by their σ, outweighs its motion prior: not yet calibrated). Energies in the summary are
-  // those of the region rounds.
+  // region rounds' templates also after an edge stage, which adds its pose posterior to every
+  // entry (ViewLinearisation::edge_posterior). Energies in the summary are those of the region
+  // rounds.
   FrameSummary Solve(const std::vector<FrameView>& views, Eigen::Isometry3d* rig_from_objcentre,
                      std::vector<ViewLinearisation>* linearisations = nullptr) const;
 
@@ -199,9 +205,11 @@ class FrameProblem {
 
  private:
   // The edge stage (EdgeRefineOptions) from and into `parameters` (7 ambient); false (the
-  // caller restores the region result) when too few lines or Ceres failed.
-  bool RefineEdges(const std::vector<FrameView>& views, double* parameters,
-                   FrameSummary* summary) const;
+  // caller restores the region result) when too few lines or Ceres failed. `posterior` (may
+  // be null) receives the pose posterior of the last edge solve, or null when its normal
+  // matrix is singular.
+  bool RefineEdges(const std::vector<FrameView>& views, double* parameters, FrameSummary* summary,
+                   std::shared_ptr<const PoseGaussian>* posterior) const;
 
   const RayCaster& caster_;
   FrameProblemOptions options_;

@@ -8,7 +8,18 @@
 // normal equations are block-banded (7×7 blocks, bandwidth 3 with an acceleration model).
 //
 // Energy of a window [s, e):
-//   Σ_t Σ_views w_v·Σ_x F_t,x(T_t)  +  Σ_spans [ ½ρ_ρ(‖W_ρ·Δ_ρ‖²) + ½ρ_φ(‖W_φ·Δ_φ‖²) ]
+//   Σ_t D_t(T_t)  +  Σ_spans [ ½ρ_ρ(‖W_ρ·Δ_ρ‖²) + ½ρ_φ(‖W_φ·Δ_φ‖²) ]
+// D_t, the data term of frame t: Σ_views w_v·Σ_x F_t,x(T_t) (its region templates), or, when
+// frame t's solve ended with the edge stage (FrameProblemOptions::edge) and edge_posterior is
+// on, ½ eᵀH_t e, the Gaussian pose posterior of its edge solve (pose_gaussian_cost.h: mean the
+// per-frame pose, H_t = JᵀJ of its whitened edge residuals divided by their a posteriori
+// variance factor when that exceeds 1). Why the posterior and not the region terms: the
+// region minimum is biased under shaded rims (edge_lines.h) and the window, refining on it,
+// pulled the poses back towards that bias (window_problem_test: mean error 0.035 → 0.059 mm
+// with the edge stage on); and not the edge lines themselves: re-measuring them is not possible
+// without the images, and the lines at the final pose hold the same information to second
+// order as H_t does, at 6 residuals per frame instead of hundreds. Both H_t and the prior are
+// whitened Gaussians (−log likelihoods in σ units), so their balance is statistical, not tuned.
 // Δ_ρ, Δ_φ: the translation and rotation rows of the part's prior — ConstantVelocityCost on
 // (t−1, t, t+1) (change of velocity) or ConstantAccelerationCost on (t−1, …, t+2) (change of
 // acceleration), per MotionModel; W = diag(1/σ); ρ_ρ, ρ_φ Cauchy losses whose scales are given
@@ -98,9 +109,15 @@ struct WindowProblemOptions {
   // model, per frame³) — per axis (x, y, z: rig axes for the translation of kDecoupled, object
   // axes otherwise); each > 0. Rotation in degrees, translation in mm; the prior weights are
   // W = diag(1/σ) (rad, mm).
-  // Defaults measured by scripts/bench_window.sh (handheld-like synth, binocular 640×512).
+  // Defaults measured by scripts/bench_window.sh (handheld-like synth, binocular 640×512) with
+  // the edge posterior as the data term (calibrated: its predicted per-frame sd, ~0.02–0.025 mm
+  // and ~0.035° per axis in window_problem_test, matches the per-frame errors there): the
+  // smooth handheld motion's true change of acceleration is 0.014–0.022 mm/frame³ rms;
+  // σ_ρ = 0.1 keeps translation jitter at the level of the former region-term window
+  // (0.15 there) without bending the velocity steps (0.07 and 0.05: smoother on smooth
+  // motion, 1.5–3.6× the error on the step frames).
   std::array<double, 3> rotation_sigma_deg = {0.1, 0.1, 0.1};
-  std::array<double, 3> translation_sigma_mm = {0.15, 0.15, 0.15};
+  std::array<double, 3> translation_sigma_mm = {0.1, 0.1, 0.1};
   // Robust prior, per part: the change per frame of the modelled quantity (translation in mm,
   // rotation in deg, per frame² or frame³) beyond which a span of frames is treated as a real
   // change of motion and its prior fades, so a sudden motion change is followed, not smoothed
@@ -111,6 +128,11 @@ struct WindowProblemOptions {
   // changes to follow; each >= 0, 0 = plain quadratic prior for that part.
   double robust_translation_mm = 0.5;
   double robust_rotation_deg = 0.3;
+  // A frame whose solve ended with the edge stage carries its edge pose posterior
+  // (ViewLinearisation::edge_posterior): true = that Gaussian is the frame's data term in the
+  // window, in place of its region terms; false = the region terms (whose minimum is biased
+  // under shaded rims and pulls the window back towards it).
+  bool edge_posterior = true;
   // Threads Ceres may use; >= 1.
   int num_threads = 1;
 
@@ -128,7 +150,8 @@ struct WindowProblemOptions {
 struct WindowSummary {
   int first = 0;  // frames [first, end)
   int end = 0;
-  int free_frames = 0;        // frames with region residuals (the others were held)
+  int free_frames = 0;        // frames with a data term (the others were held)
+  int edge_frames = 0;        // of those, frames whose data term is their edge posterior
   int iterations = 0;         // Ceres iterations
   double initial_cost = 0.0;  // Ceres cost (region energy + ½‖prior‖²) at the per-frame poses
   double final_cost = 0.0;

@@ -1,0 +1,149 @@
+#include "bcot/optim/pose_gaussian_cost.h"
+
+#include <ceres/gradient_checker.h>
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "bcot/core/se3.h"
+#include "bcot/optim/se3_manifold.h"
+
+namespace bcot {
+namespace {
+
+Eigen::Isometry3d RandomPose(std::mt19937& rng, double angle) {
+  std::normal_distribution<double> normal;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() =
+      ExpSO3(angle * Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
+  pose.translation() = Eigen::Vector3d(normal(rng), normal(rng), 500.0 + normal(rng)) * 40.0;
+  return pose;
+}
+
+// A random symmetric positive definite information matrix with a wide range of scales (1/mm² and
+// 1/rad² entries as an edge fit gives them) and correlations between all six directions.
+Matrix6d RandomInformation(std::mt19937& rng) {
+  std::normal_distribution<double> normal;
+  Matrix6d a;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) a(i, j) = normal(rng);
+  }
+  Vector6d scale;
+  scale << 20.0, 30.0, 5.0, 2000.0, 3000.0, 1500.0;
+  return scale.asDiagonal() * (a * a.transpose() + Matrix6d::Identity()) * scale.asDiagonal();
+}
+
+TEST(PoseGaussianCostTest, SqrtInformationFactorsTheMatrixAndRejectsSingularOnes) {
+  std::mt19937 rng(2);
+  const Matrix6d information = RandomInformation(rng);
+  Matrix6d u;
+  ASSERT_TRUE(SqrtInformation(information, &u));
+  EXPECT_LT((u.transpose() * u - information).norm(), 1e-9 * information.norm());
+  EXPECT_TRUE(u.isUpperTriangular());
+  Matrix6d singular = information;
+  singular.row(2).setZero();
+  singular.col(2).setZero();
+  EXPECT_FALSE(SqrtInformation(singular, &u));
+}
+
+// ½‖r‖² = ½ eᵀHe with e the centre displacement in the mean's object frame and the rotation.
+TEST(PoseGaussianCostTest, ResidualIsTheWhitenedPoseError) {
+  std::mt19937 rng(5);
+  PoseGaussian gaussian;
+  gaussian.mean = RandomPose(rng, 2.0);
+  const Matrix6d information = RandomInformation(rng);
+  ASSERT_TRUE(SqrtInformation(information, &gaussian.sqrt_information));
+  const PoseGaussianCost cost(gaussian);
+  PoseParameters x = ToPoseParameters(gaussian.mean);
+  const double* at_mean[] = {x.data()};
+  Vector6d r;
+  ASSERT_TRUE(cost.Evaluate(at_mean, r.data(), nullptr));
+  EXPECT_LT(r.norm(), 1e-9);
+  // Move the centre by 0.3 mm along the object's x axis and rotate 0.01 rad about its z axis.
+  Eigen::Isometry3d moved = gaussian.mean;
+  moved.translation() += gaussian.mean.linear() * Eigen::Vector3d(0.3, 0.0, 0.0);
+  moved.linear() = gaussian.mean.linear() * ExpSO3(Eigen::Vector3d(0.0, 0.0, 0.01));
+  x = ToPoseParameters(moved);
+  const double* at_moved[] = {x.data()};
+  ASSERT_TRUE(cost.Evaluate(at_moved, r.data(), nullptr));
+  Vector6d e;
+  e << 0.3, 0.0, 0.0, 0.0, 0.0, 0.01;
+  EXPECT_NEAR(r.squaredNorm(), e.dot(information * e), 1e-9 * e.dot(information * e));
+}
+
+// Analytic Jacobian against ceres::GradientChecker (not at exactly T = T̂, where entries that
+// are exact zeros meet round-off in the checker's relative error).
+TEST(PoseGaussianCostTest, GradientCheckerAcceptsTheJacobian) {
+  std::mt19937 rng(7);
+  Se3Manifold manifold;
+  std::vector<const ceres::Manifold*> manifolds = {&manifold};
+  for (double relative_angle : {1e-3, 0.3, 1.0, 2.0}) {
+    PoseGaussian gaussian;
+    gaussian.mean = RandomPose(rng, 1.5);
+    ASSERT_TRUE(SqrtInformation(RandomInformation(rng) * 1e-4, &gaussian.sqrt_information));
+    std::normal_distribution<double> normal;
+    Eigen::Isometry3d pose = gaussian.mean;
+    pose.linear() = gaussian.mean.linear() *
+                    ExpSO3(relative_angle *
+                           Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
+    pose.translation() += Eigen::Vector3d(normal(rng), normal(rng), normal(rng)) * 5.0;
+    const PoseGaussianCost cost(gaussian);
+    ceres::NumericDiffOptions numeric_options;
+    ceres::GradientChecker checker(&cost, &manifolds, numeric_options);
+    PoseParameters x = ToPoseParameters(pose);
+    const double* parameters[] = {x.data()};
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(parameters, 1e-7, &results)) << "angle " << relative_angle << "\n"
+                                                           << results.error_log;
+  }
+}
+
+// Central differences of the residual through T ⊕ δ against the Lie Jacobian, including
+// relative rotations near π.
+TEST(PoseGaussianCostTest, LieJacobianMatchesCentralDifferencesThroughPlus) {
+  std::mt19937 rng(11);
+  Se3Manifold manifold;
+  for (double relative_angle : {1e-3, 1.0, 3.0, kPi - 1e-2}) {
+    PoseGaussian gaussian;
+    gaussian.mean = RandomPose(rng, 1.5);
+    ASSERT_TRUE(SqrtInformation(RandomInformation(rng) * 1e-4, &gaussian.sqrt_information));
+    Eigen::Isometry3d pose = gaussian.mean;
+    std::normal_distribution<double> normal;
+    pose.linear() = gaussian.mean.linear() *
+                    ExpSO3(relative_angle *
+                           Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
+    pose.translation() += Eigen::Vector3d(normal(rng), normal(rng), normal(rng)) * 5.0;
+    const PoseGaussianCost cost(gaussian);
+    PoseParameters x = ToPoseParameters(pose);
+    const double* parameters[] = {x.data()};
+    Eigen::Matrix<double, 6, 7, Eigen::RowMajor> ambient;
+    double* jacobians[] = {ambient.data()};
+    double residuals[6];
+    ASSERT_TRUE(cost.Evaluate(parameters, residuals, jacobians));
+    Eigen::Matrix<double, 7, 6, Eigen::RowMajor> plus_jacobian;
+    ASSERT_TRUE(manifold.PlusJacobian(x.data(), plus_jacobian.data()));
+    const Eigen::Matrix<double, 6, 6> analytic = ambient * plus_jacobian;
+    constexpr double kStep = 1e-6;
+    for (int k = 0; k < 6; ++k) {
+      double delta[6] = {0, 0, 0, 0, 0, 0};
+      PoseParameters plus, minus;
+      delta[k] = kStep;
+      manifold.Plus(x.data(), delta, plus.data());
+      delta[k] = -kStep;
+      manifold.Plus(x.data(), delta, minus.data());
+      double r_plus[6], r_minus[6];
+      const double* p_plus[] = {plus.data()};
+      const double* p_minus[] = {minus.data()};
+      ASSERT_TRUE(cost.Evaluate(p_plus, r_plus, nullptr));
+      ASSERT_TRUE(cost.Evaluate(p_minus, r_minus, nullptr));
+      for (int i = 0; i < 6; ++i) {
+        const double numeric = (r_plus[i] - r_minus[i]) / (2.0 * kStep);
+        EXPECT_NEAR(analytic(i, k), numeric, 1e-6 * (1.0 + std::abs(numeric)))
+            << "angle " << relative_angle << " residual " << i << " tangent " << k;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bcot
