@@ -18,11 +18,18 @@ before=$(realpath "$1")
 after=$(realpath "$2")
 work=${3:-out/compare_builds}
 mkdir -p "$work/seq"
-[ -f "$work/seq/demo/rig.yaml" ] ||
-  "$before" synth --config configs/synth/demo.yaml --out "$work/seq/demo"
-[ -f "$work/seq/glossy/rig.yaml" ] ||
-  "$before" synth --config configs/synth/glossy_fast.yaml --out "$work/seq/glossy" \
-    --set motion.num_frames=20
+# Each sequence is synthesized beside its final name and renamed when complete, so an
+# interrupted run never leaves a partial sequence that a rerun would take as finished.
+synth() {  # name, config, extra synth arguments...
+  local name=$1 config=$2
+  shift 2
+  [ -d "$work/seq/$name" ] && return 0
+  rm -rf "$work/seq-partial/$name"
+  "$before" synth --config "$config" --out "$work/seq-partial/$name" "$@" >/dev/null
+  mv "$work/seq-partial/$name" "$work/seq/$name"
+}
+synth demo configs/synth/demo.yaml
+synth glossy configs/synth/glossy_fast.yaml --set motion.num_frames=20
 configs_before=${BCOT_CONFIGS_BEFORE:-configs}
 configs_after=${BCOT_CONFIGS_AFTER:-configs}
 for side in before after; do
@@ -38,7 +45,7 @@ done
 status=0
 for dir in ann/demo ann/glossy track; do
   for file in rig_from_object.txt cam0/pose.txt cam1/pose.txt quality.csv; do
-    if cmp -s "$work/before/$dir/$file" "$work/after/$dir/$file"; then
+    if [ -f "$work/before/$dir/$file" ] && cmp -s "$work/before/$dir/$file" "$work/after/$dir/$file"; then
       echo "same       $dir/$file"
     else
       echo "DIFFERENT  $dir/$file"; status=1
@@ -49,7 +56,8 @@ for dir in ann/demo ann/glossy track; do
 rows=list(csv.reader(open(sys.argv[1])))
 i=rows[0].index("milliseconds")
 print("\n".join(",".join(r[:i]+r[i+1:]) for r in rows))' "$1"; }
-  if [ "$(strip "$work/before/$dir/frames.csv")" = "$(strip "$work/after/$dir/frames.csv")" ]; then
+  if [ -f "$work/before/$dir/frames.csv" ] && [ -f "$work/after/$dir/frames.csv" ] &&
+    [ "$(strip "$work/before/$dir/frames.csv")" = "$(strip "$work/after/$dir/frames.csv")" ]; then
     echo "same       $dir/frames.csv (wall time excluded)"
   else
     echo "DIFFERENT  $dir/frames.csv"; status=1
