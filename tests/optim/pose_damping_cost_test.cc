@@ -1,29 +1,19 @@
 #include "bcot/optim/pose_damping_cost.h"
 
-#include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "bcot/core/se3.h"
 #include "bcot/optim/se3_manifold.h"
-#include "tangent_jacobian_check.h"
+#include "pose_cost_checks.h"
 
 namespace bcot {
 namespace {
 
-Eigen::Isometry3d RandomPose(std::mt19937& rng, double angle) {
-  std::normal_distribution<double> normal;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() =
-      ExpSO3(angle * Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
-  pose.translation() = Eigen::Vector3d(normal(rng), normal(rng), 500.0 + normal(rng)) * 40.0;
-  return pose;
-}
-
 TEST(PoseDampingCostTest, IsZeroAtTheLinearisationPose) {
   std::mt19937 rng(3);
-  const Eigen::Isometry3d pose = RandomPose(rng, 1.0);
+  const Eigen::Isometry3d pose = test::RandomPose(rng, 1.0);
   const PoseDampingCost cost(pose, 2.0, 30.0);
   PoseParameters x = ToPoseParameters(pose);
   const double* parameters[] = {x.data()};
@@ -34,7 +24,7 @@ TEST(PoseDampingCostTest, IsZeroAtTheLinearisationPose) {
 
 TEST(PoseDampingCostTest, MeasuresCentreDisplacementAndRotationAboutTheCentre) {
   std::mt19937 rng(5);
-  const Eigen::Isometry3d pose_0 = RandomPose(rng, 2.0);
+  const Eigen::Isometry3d pose_0 = test::RandomPose(rng, 2.0);
   // Move the centre by 3 mm along the object's x axis and rotate 0.1 rad about its z axis.
   Eigen::Isometry3d moved = pose_0;
   moved.translation() += pose_0.linear() * Eigen::Vector3d(3.0, 0.0, 0.0);
@@ -58,24 +48,11 @@ TEST(PoseDampingCostTest, MeasuresCentreDisplacementAndRotationAboutTheCentre) {
 // disagrees with central differences through Se3Manifold::Plus, which the next test uses.)
 TEST(PoseDampingCostTest, GradientCheckerAcceptsTheJacobian) {
   std::mt19937 rng(7);
-  Se3Manifold manifold;
-  std::vector<const ceres::Manifold*> manifolds = {&manifold};
   for (double relative_angle : {1e-3, 0.3, 1.0, 2.0}) {
-    const Eigen::Isometry3d pose_0 = RandomPose(rng, 1.5);
-    std::normal_distribution<double> normal;
-    Eigen::Isometry3d pose = pose_0;
-    pose.linear() = pose_0.linear() *
-                    ExpSO3(relative_angle *
-                           Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
-    pose.translation() += Eigen::Vector3d(normal(rng), normal(rng), normal(rng)) * 5.0;
+    const Eigen::Isometry3d pose_0 = test::RandomPose(rng, 1.5);
+    const Eigen::Isometry3d pose = test::TurnedAndMoved(pose_0, relative_angle, rng);
     const PoseDampingCost cost(pose_0, 0.7, 12.0);
-    ceres::NumericDiffOptions numeric_options;
-    ceres::GradientChecker checker(&cost, &manifolds, numeric_options);
-    PoseParameters x = ToPoseParameters(pose);
-    const double* parameters[] = {x.data()};
-    ceres::GradientChecker::ProbeResults results;
-    EXPECT_TRUE(checker.Probe(parameters, 1e-7, &results)) << "angle " << relative_angle << "\n"
-                                                           << results.error_log;
+    test::ExpectGradientCheckerAccepts(cost, pose, "angle " + std::to_string(relative_angle));
   }
 }
 
@@ -84,13 +61,8 @@ TEST(PoseDampingCostTest, GradientCheckerAcceptsTheJacobian) {
 TEST(PoseDampingCostTest, LieJacobianMatchesCentralDifferencesThroughPlus) {
   std::mt19937 rng(11);
   for (double relative_angle : {1e-3, 1.0, 3.0, kPi - 1e-2}) {
-    const Eigen::Isometry3d pose_0 = RandomPose(rng, 1.5);
-    Eigen::Isometry3d pose = pose_0;
-    std::normal_distribution<double> normal;
-    pose.linear() = pose_0.linear() *
-                    ExpSO3(relative_angle *
-                           Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
-    pose.translation() += Eigen::Vector3d(normal(rng), normal(rng), normal(rng)) * 5.0;
+    const Eigen::Isometry3d pose_0 = test::RandomPose(rng, 1.5);
+    const Eigen::Isometry3d pose = test::TurnedAndMoved(pose_0, relative_angle, rng);
     const PoseDampingCost cost(pose_0, 0.7, 12.0);
     test::ExpectTangentJacobianMatchesCentralDifferences(cost, ToPoseParameters(pose),
                                                          "angle " + std::to_string(relative_angle));

@@ -1,25 +1,15 @@
 #include "bcot/optim/pose_gaussian_cost.h"
 
-#include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "bcot/core/se3.h"
 #include "bcot/optim/se3_manifold.h"
-#include "tangent_jacobian_check.h"
+#include "pose_cost_checks.h"
 
 namespace bcot {
 namespace {
-
-Eigen::Isometry3d RandomPose(std::mt19937& rng, double angle) {
-  std::normal_distribution<double> normal;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() =
-      ExpSO3(angle * Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
-  pose.translation() = Eigen::Vector3d(normal(rng), normal(rng), 500.0 + normal(rng)) * 40.0;
-  return pose;
-}
 
 // A random symmetric positive definite information matrix with a wide range of scales (1/mm² and
 // 1/rad² entries as an edge fit gives them) and correlations between all six directions.
@@ -51,7 +41,7 @@ TEST(PoseGaussianCostTest, SqrtInformationFactorsTheMatrixAndRejectsSingularOnes
 TEST(PoseGaussianCostTest, ResidualIsTheWhitenedPoseError) {
   std::mt19937 rng(5);
   PoseGaussian gaussian;
-  gaussian.mean = RandomPose(rng, 2.0);
+  gaussian.mean = test::RandomPose(rng, 2.0);
   const Matrix6d information = RandomInformation(rng);
   ASSERT_TRUE(SqrtInformation(information, &gaussian.sqrt_information));
   const PoseGaussianCost cost(gaussian);
@@ -76,26 +66,13 @@ TEST(PoseGaussianCostTest, ResidualIsTheWhitenedPoseError) {
 // are exact zeros meet round-off in the checker's relative error).
 TEST(PoseGaussianCostTest, GradientCheckerAcceptsTheJacobian) {
   std::mt19937 rng(7);
-  Se3Manifold manifold;
-  std::vector<const ceres::Manifold*> manifolds = {&manifold};
   for (double relative_angle : {1e-3, 0.3, 1.0, 2.0}) {
     PoseGaussian gaussian;
-    gaussian.mean = RandomPose(rng, 1.5);
+    gaussian.mean = test::RandomPose(rng, 1.5);
     ASSERT_TRUE(SqrtInformation(RandomInformation(rng) * 1e-4, &gaussian.sqrt_information));
-    std::normal_distribution<double> normal;
-    Eigen::Isometry3d pose = gaussian.mean;
-    pose.linear() = gaussian.mean.linear() *
-                    ExpSO3(relative_angle *
-                           Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
-    pose.translation() += Eigen::Vector3d(normal(rng), normal(rng), normal(rng)) * 5.0;
+    const Eigen::Isometry3d pose = test::TurnedAndMoved(gaussian.mean, relative_angle, rng);
     const PoseGaussianCost cost(gaussian);
-    ceres::NumericDiffOptions numeric_options;
-    ceres::GradientChecker checker(&cost, &manifolds, numeric_options);
-    PoseParameters x = ToPoseParameters(pose);
-    const double* parameters[] = {x.data()};
-    ceres::GradientChecker::ProbeResults results;
-    EXPECT_TRUE(checker.Probe(parameters, 1e-7, &results)) << "angle " << relative_angle << "\n"
-                                                           << results.error_log;
+    test::ExpectGradientCheckerAccepts(cost, pose, "angle " + std::to_string(relative_angle));
   }
 }
 
@@ -105,14 +82,9 @@ TEST(PoseGaussianCostTest, LieJacobianMatchesCentralDifferencesThroughPlus) {
   std::mt19937 rng(11);
   for (double relative_angle : {1e-3, 1.0, 3.0, kPi - 1e-2}) {
     PoseGaussian gaussian;
-    gaussian.mean = RandomPose(rng, 1.5);
+    gaussian.mean = test::RandomPose(rng, 1.5);
     ASSERT_TRUE(SqrtInformation(RandomInformation(rng) * 1e-4, &gaussian.sqrt_information));
-    Eigen::Isometry3d pose = gaussian.mean;
-    std::normal_distribution<double> normal;
-    pose.linear() = gaussian.mean.linear() *
-                    ExpSO3(relative_angle *
-                           Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized());
-    pose.translation() += Eigen::Vector3d(normal(rng), normal(rng), normal(rng)) * 5.0;
+    const Eigen::Isometry3d pose = test::TurnedAndMoved(gaussian.mean, relative_angle, rng);
     const PoseGaussianCost cost(gaussian);
     test::ExpectTangentJacobianMatchesCentralDifferences(cost, ToPoseParameters(pose),
                                                          "angle " + std::to_string(relative_angle));
