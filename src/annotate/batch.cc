@@ -60,6 +60,8 @@ void FillVerdict(const StatusOr<QualityVerdict>& verdict, BatchSequenceResult* r
   }
   result->accepted = verdict->accepted;
   result->worst_px = verdict->worst_px;
+  result->bad_frame_views = verdict->bad_frame_views;
+  result->unverified_frame_views = verdict->unverified_frame_views;
   result->reasons = verdict->reasons;
 }
 
@@ -423,6 +425,8 @@ std::string BatchSummaryJson(const BatchResult& result) {
       entry["verdict"] = s.accepted ? "accepted" : "rejected";
       entry["reasons"] = s.reasons;
       entry["worst_px"] = s.worst_px;
+      entry["bad_frame_views"] = s.bad_frame_views;
+      entry["unverified_frame_views"] = s.unverified_frame_views;
       entry["report"] = s.relative_path + "/report.html";
     }
     entry["frames"] = s.frames;
@@ -448,9 +452,11 @@ std::string BatchSummaryHtml(const BatchResult& result) {
                              HtmlEscape(s.relative_path));
     rows += fmt::format(
         "<tr class='{0}'><td>{1}</td><td>{0}</td><td>{2}</td><td data-v='{3}'>{4}</td>"
-        "<td data-v='{5}'>{5}</td><td>{6}</td></tr>\n",
+        "<td data-v='{5}'>{5}</td><td data-v='{6}'>{6}</td><td data-v='{7}'>{7}</td>"
+        "<td>{8}</td></tr>\n",
         verdict, name, BatchOutcomeName(s.outcome), failed ? -1.0 : s.worst_px,
-        failed ? "–" : fmt::format("{:.2f}", s.worst_px), s.frames, HtmlEscape(why));
+        failed ? "–" : fmt::format("{:.2f}", s.worst_px), s.frames, s.bad_frame_views,
+        s.unverified_frame_views, HtmlEscape(why));
   }
   return fmt::format(
       "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>bcot batch "
@@ -461,7 +467,8 @@ std::string BatchSummaryHtml(const BatchResult& result) {
       "<h1>bcot batch summary</h1><p id='counts'>{} accepted, {} rejected, {} failed of {} "
       "sequences. Click a column header to sort.</p>\n<table id='summary'><thead><tr>"
       "<th>sequence</th><th>verdict</th><th>this run</th><th>worst error (px)</th><th>frames"
-      "</th><th>why</th></tr></thead><tbody>\n{}</tbody></table>\n<script>\n"
+      "</th><th>bad frame-views</th><th>cannot "
+      "tell</th><th>why</th></tr></thead><tbody>\n{}</tbody></table>\n<script>\n"
       "(function () {{\n"
       "  var table = document.getElementById('summary');\n"
       "  var headers = table.tHead.rows[0].cells;\n"

@@ -4,10 +4,10 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <string>
 
+#include "bcot/core/linear_rgb.h"
 #include "violations.h"
 
 namespace bcot {
@@ -81,36 +81,6 @@ double Residuals(const std::vector<double>& s, const std::vector<double>& p, dou
     }
   }
   return rss;
-}
-
-// sRGB 8-bit → linear lookup.
-const std::array<float, 256>& LinearTable() {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> t{};
-    for (int i = 0; i < 256; ++i) {
-      const double v = i / 255.0;
-      t[i] = static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
-    }
-    return t;
-  }();
-  return table;
-}
-
-// Bilinear linear-RGB colour at p (BGR image; p and its 2×2 neighbours inside, checked by the
-// caller).
-Eigen::Vector3d SampleLinear(const cv::Mat3b& image, const Eigen::Vector2d& p) {
-  const std::array<float, 256>& lut = LinearTable();
-  const int x0 = static_cast<int>(std::floor(p.x()));
-  const int y0 = static_cast<int>(std::floor(p.y()));
-  const double fx = p.x() - x0, fy = p.y() - y0;
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  const double weights[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-  const int dx[4] = {0, 1, 0, 1}, dy[4] = {0, 0, 1, 1};
-  for (int k = 0; k < 4; ++k) {
-    const cv::Vec3b& px = image(y0 + dy[k], x0 + dx[k]);
-    sum += weights[k] * Eigen::Vector3d(lut[px[2]], lut[px[1]], lut[px[0]]);
-  }
-  return sum;
 }
 
 }  // namespace
@@ -211,6 +181,39 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
   return true;
 }
 
+EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const Eigen::Vector2d& centre,
+                         const Eigen::Vector2d& normal, const EdgeLineOptions& options,
+                         EdgeFit* fit) {
+  const double h = options.step_px;
+  const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
+  if (!CanSampleBilinear(image.size(), centre - half * h * normal) ||
+      !CanSampleBilinear(image.size(), centre + half * h * normal)) {
+    return EdgeAcross::kOffImage;
+  }
+  std::vector<Eigen::Vector3d> colors(2 * half + 1);
+  Eigen::Vector3d inside = Eigen::Vector3d::Zero(), outside = Eigen::Vector3d::Zero();
+  int inside_count = 0, outside_count = 0;
+  for (int k = -half; k <= half; ++k) {
+    const double s = k * h;
+    colors[k + half] = SampleLinearRgb(image, centre + s * normal);
+    if (s <= -1.0) {
+      inside += colors[k + half];
+      ++inside_count;
+    } else if (s >= 1.0) {
+      outside += colors[k + half];
+      ++outside_count;
+    }
+  }
+  const Eigen::Vector3d d =
+      inside / std::max(1, inside_count) - outside / std::max(1, outside_count);
+  if (!(d.norm() >= options.min_contrast) || d.norm() == 0.0) return EdgeAcross::kAmbiguous;
+  const Eigen::Vector3d direction = d.normalized();
+  std::vector<double> profile(2 * half + 1);
+  for (int k = 0; k <= 2 * half; ++k) profile[k] = direction.dot(colors[k]);
+  return FitEdgeProfile(profile, -half * h, options, fit) ? EdgeAcross::kFound
+                                                          : EdgeAcross::kAmbiguous;
+}
+
 StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Camera& camera,
                                              const Eigen::Isometry3d& cam_from_rig,
                                              const Eigen::Isometry3d& rig_from_objcentre,
@@ -228,19 +231,13 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
   const int num_candidates = std::min(options.num_lines, count);
   const double h = options.step_px;
   const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
-  std::vector<Eigen::Vector3d> colors(2 * half + 1);
-  std::vector<double> profile(2 * half + 1);
   const cv::Mat1b& mask = silhouette.mask;
   for (int j = 0; j < num_candidates; ++j) {
     const ContourPoint& point = contour[static_cast<size_t>((j + 0.5) * count / num_candidates)];
     ++result.candidates;
     const Eigen::Vector2d first = point.pixel - half * h * point.normal;
     const Eigen::Vector2d last = point.pixel + half * h * point.normal;
-    auto inside_image = [&](const Eigen::Vector2d& q) {
-      return q.x() >= 0.0 && q.y() >= 0.0 && q.x() < camera.width - 1.0 &&
-             q.y() < camera.height - 1.0;
-    };
-    if (!inside_image(first) || !inside_image(last)) {
+    if (!CanSampleBilinear(image.size(), first) || !CanSampleBilinear(image.size(), last)) {
       ++result.rejected_off_image;
       continue;
     }
@@ -268,30 +265,9 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
       continue;
     }
     line.projection0 = camera.Project(point_in_cam);
-    Eigen::Vector3d inside = Eigen::Vector3d::Zero(), outside = Eigen::Vector3d::Zero();
-    int inside_count = 0, outside_count = 0;
-    for (int k = -half; k <= half; ++k) {
-      const double s = k * h;
-      colors[k + half] = SampleLinear(image, point.pixel + s * point.normal);
-      if (s <= -1.0) {
-        inside += colors[k + half];
-        ++inside_count;
-      } else if (s >= 1.0) {
-        outside += colors[k + half];
-        ++outside_count;
-      }
-    }
-    const Eigen::Vector3d d =
-        inside / std::max(1, inside_count) - outside / std::max(1, outside_count);
-    if (!(d.norm() >= options.min_contrast) || d.norm() == 0.0) {
-      ++result.rejected_ambiguous;
-      continue;
-    }
-    const Eigen::Vector3d direction = d.normalized();
-    for (int k = 0; k <= 2 * half; ++k) profile[k] = direction.dot(colors[k]);
     EdgeFit fit;
-    if (!FitEdgeProfile(profile, -half * h, options, &fit)) {
-      ++result.rejected_ambiguous;
+    if (FitEdgeAcross(image, point.pixel, point.normal, options, &fit) != EdgeAcross::kFound) {
+      ++result.rejected_ambiguous;  // off-image windows were rejected above
       continue;
     }
     line.mean_px = fit.mean_px;

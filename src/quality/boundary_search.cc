@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "bcot/optim/edge_lines.h"
+
 namespace bcot {
 namespace {
 
@@ -81,6 +83,31 @@ std::vector<double> BoundaryOffsets(const std::vector<ContourPoint>& contour,
     offsets[i] = (best - radius + refine + 0.5) * kProfileStepPx;
   }
   return offsets;
+}
+
+RefinedOffsets RefineOffsetsOnEdges(const std::vector<ContourPoint>& contour,
+                                    const std::vector<double>& offsets, const cv::Mat3b& image,
+                                    const QualityOptions& options) {
+  BCOT_CHECK(contour.size() == offsets.size());
+  RefinedOffsets result;
+  result.offsets.assign(contour.size(), kNaN);
+  result.sigmas_px.assign(contour.size(), kNaN);
+  EdgeLineOptions edge;
+  edge.search_px = options.edge_search_px;
+  edge.min_snr = options.edge_min_snr;
+  edge.window_px = edge.search_px + edge.fit_half_px;
+  for (size_t i = 0; i < contour.size(); ++i) {
+    if (!std::isfinite(offsets[i])) continue;
+    const Eigen::Vector2d centre = contour[i].pixel + offsets[i] * contour[i].normal;
+    EdgeFit fit;
+    if (FitEdgeAcross(image, centre, contour[i].normal, edge, &fit) != EdgeAcross::kFound) {
+      ++result.ambiguous;
+      continue;
+    }
+    result.offsets[i] = offsets[i] + fit.mean_px;
+    result.sigmas_px[i] = fit.sigma_px;
+  }
+  return result;
 }
 
 double AbsPercentile(const std::vector<double>& values, double fraction) {

@@ -52,9 +52,10 @@ std::string ViewPlot(const QualityReport& report, size_t v) {
       "<line x1='{}' x2='{}' y1='{:.1f}' y2='{:.1f}' stroke='#d33' stroke-dasharray='4 3'/>", left,
       width - 10, y_of(report.options.threshold_px), y_of(report.options.threshold_px));
   for (int f = 0; f < num_frames; ++f) {
-    if (report.frames[f][v].bad) {
-      svg += fmt::format("<rect x='{:.1f}' y='5' width='2' height='{}' fill='#f4b4b4'/>",
-                         x_of(f) - 1, height - bottom);
+    const ViewFrameQuality& q = report.frames[f][v];
+    if (q.bad || !q.verifiable) {
+      svg += fmt::format("<rect x='{:.1f}' y='5' width='2' height='{}' fill='{}'/>", x_of(f) - 1,
+                         height - bottom, q.bad ? "#f4b4b4" : "#c8c8c8");
     }
   }
   svg += polyline(false, "#2a6");
@@ -115,18 +116,26 @@ std::string QualityJson(const QualityReport& report) {
   json["options"] = {{"threshold_px", report.options.threshold_px},
                      {"statistic", QualityStatisticName(report.options.statistic)},
                      {"allowed_bad_fraction", report.options.allowed_bad_fraction},
+                     {"min_found_fraction", report.options.min_found_fraction},
+                     {"allowed_unverified_fraction", report.options.allowed_unverified_fraction},
                      {"search_radius_px", report.options.search_radius_px},
+                     {"refine_on_edges", report.options.refine_on_edges},
                      {"fit_rigid_motion", report.options.fit_rigid_motion}};
   json["num_frames"] = report.frames.size();
   for (const ViewQualitySummary& view : report.views) {
     json["views"].push_back({{"name", view.name},
                              {"bad_frames", view.bad_frames},
                              {"bad_fraction", view.bad_fraction},
+                             {"unverified_frames", view.unverified_frames},
+                             {"unverified_fraction", view.unverified_fraction},
                              {"median_of_medians_px", view.median_of_medians_px},
                              {"worst_px", view.worst_px},
                              {"worst_frames", view.worst_frames}});
   }
-  json["worst_px"] = VerdictOf(report).worst_px;
+  const QualityVerdict verdict = VerdictOf(report);
+  json["worst_px"] = verdict.worst_px;
+  json["bad_frame_views"] = verdict.bad_frame_views;
+  json["unverified_frame_views"] = verdict.unverified_frame_views;
   for (size_t f = 0; f < report.frames.size(); ++f) {
     nlohmann::ordered_json frame = {{"frame", f}};
     for (size_t v = 0; v < report.view_names.size(); ++v) {
@@ -135,8 +144,11 @@ std::string QualityJson(const QualityReport& report) {
                                 {"p90_px", q.p90_px},
                                 {"raw_median_px", q.raw_median_px},
                                 {"raw_p90_px", q.raw_p90_px},
+                                {"statistic_sigma_px", q.statistic_sigma_px},
                                 {"points", q.points},
                                 {"found", q.found},
+                                {"ambiguous", q.ambiguous},
+                                {"verifiable", q.verifiable},
                                 {"bad", q.bad}});
     }
     json["frames"].push_back(frame);
@@ -145,13 +157,16 @@ std::string QualityJson(const QualityReport& report) {
 }
 
 std::string QualityCsv(const QualityReport& report) {
-  std::string csv = "frame,view,median_px,p90_px,raw_median_px,raw_p90_px,points,found,bad\n";
+  std::string csv =
+      "frame,view,median_px,p90_px,raw_median_px,raw_p90_px,points,found,bad,statistic_sigma_px,"
+      "ambiguous,verifiable\n";
   for (size_t f = 0; f < report.frames.size(); ++f) {
     for (size_t v = 0; v < report.view_names.size(); ++v) {
       const ViewFrameQuality& q = report.frames[f][v];
-      csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", f, report.view_names[v],
+      csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", f, report.view_names[v],
                          JsonNumber(q.median_px), JsonNumber(q.p90_px), JsonNumber(q.raw_median_px),
-                         JsonNumber(q.raw_p90_px), q.points, q.found, q.bad ? 1 : 0);
+                         JsonNumber(q.raw_p90_px), q.points, q.found, q.bad ? 1 : 0,
+                         JsonNumber(q.statistic_sigma_px), q.ambiguous, q.verifiable ? 1 : 0);
     }
   }
   return csv;
@@ -174,11 +189,19 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
   html += fmt::format("<div class='verdict {0}' id='verdict'><b>{0}</b>",
                       report.accepted ? "accepted" : "rejected");
   html += fmt::format(
-      " — a frame-view is bad when its {} reprojection error exceeds {} px (or its boundary "
-      "is not visible on {:.0f}% of the contour); a view may be bad on {:.0f}% of frames.",
+      " — a frame-view is bad when its {} reprojection error exceeds {} px, and cannot be told "
+      "(grey) when the object is not in view or its boundary is not visible on more than "
+      "{:.0f}% of the contour; a view may be bad on {:.0f}% and unverifiable on {:.0f}% of "
+      "frames.",
       QualityStatisticName(report.options.statistic), report.options.threshold_px,
       100.0 * (1.0 - report.options.min_found_fraction),
-      100.0 * report.options.allowed_bad_fraction);
+      100.0 * report.options.allowed_bad_fraction,
+      100.0 * report.options.allowed_unverified_fraction);
+  if (report.options.refine_on_edges) {
+    html +=
+        " Each boundary is the centre of the image's blurred step near the colour posterior's "
+        "boundary; points without a clean step are not used.";
+  }
   if (report.options.fit_rigid_motion) {
     html +=
         " The reprojection error of a contour point is the offset that the rigid motion fitted "
@@ -191,12 +214,12 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
     html += "</ul>";
   }
   html +=
-      "</div>\n<table><tr><th>view</th><th>bad frames</th><th>median of medians (px)</th>"
-      "<th>worst (px)</th></tr>";
+      "</div>\n<table><tr><th>view</th><th>bad frames</th><th>cannot tell</th>"
+      "<th>median of medians (px)</th><th>worst (px)</th></tr>";
   for (const ViewQualitySummary& view : report.views) {
-    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{:.2f}</td><td>{:.2f}</td></tr>",
-                        HtmlEscape(view.name), view.bad_frames, view.median_of_medians_px,
-                        view.worst_px);
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.2f}</td><td>{:.2f}</td></tr>",
+                        HtmlEscape(view.name), view.bad_frames, view.unverified_frames,
+                        view.median_of_medians_px, view.worst_px);
   }
   html += "</table>\n";
   for (size_t v = 0; v < report.view_names.size(); ++v) {
@@ -224,9 +247,12 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
               : "";
       html += fmt::format(
           "<figure><img alt='frame {0}' src='data:image/png;base64,{1}'><figcaption>frame {0}: "
-          "median {2:.2f} px, p90 {3:.2f} px{4}, boundary found on {5}/{6}{7}</figcaption>"
+          "median {2:.2f} px, p90 {3:.2f} px{4}{5}, boundary found on {6}/{7}{8}</figcaption>"
           "</figure>",
-          frame, png, q.median_px, q.p90_px, raw, q.found, q.points, q.bad ? " — bad" : "");
+          frame, png, q.median_px, q.p90_px,
+          std::isfinite(q.statistic_sigma_px) ? fmt::format(" (± {:.2f} px)", q.statistic_sigma_px)
+                                              : "",
+          raw, q.found, q.points, q.bad ? " — bad" : (!q.verifiable ? " — cannot tell" : ""));
     }
     html += "</div>\n";
   }
@@ -251,6 +277,8 @@ QualityVerdict VerdictOf(const QualityReport& report) {
   verdict.reasons = report.reasons;
   for (const ViewQualitySummary& view : report.views) {
     verdict.worst_px = std::max(verdict.worst_px, view.worst_px);
+    verdict.bad_frame_views += view.bad_frames;
+    verdict.unverified_frame_views += view.unverified_frames;
   }
   verdict.frames = static_cast<int>(report.frames.size());
   return verdict;
@@ -272,6 +300,8 @@ StatusOr<QualityVerdict> ReadQualityVerdict(const std::string& annotation_dir) {
   }
   verdict.worst_px = json.value("worst_px", 0.0);
   verdict.frames = json.value("num_frames", 0);
+  verdict.bad_frame_views = json.value("bad_frame_views", 0);
+  verdict.unverified_frame_views = json.value("unverified_frame_views", 0);
   return verdict;
 }
 

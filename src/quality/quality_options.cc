@@ -55,8 +55,36 @@ OptionSchema<QualityOptions>* BuildQualityOptionSchema() {
       });
   s->Add(
        "quality.min_found_fraction", [](auto& o) -> auto& { return o.min_found_fraction; }, "",
-       "below this fraction of contour points with a boundary the frame-view is bad")
+       "below this fraction of contour points with a usable boundary the frame-view cannot be "
+       "verified")
       .Range(Closed(0, 1));
+  s->Add(
+       "quality.allowed_unverified_fraction",
+       [](auto& o) -> auto& { return o.allowed_unverified_fraction; }, "",
+       "a view may be unverifiable on at most this fraction of frames")
+      .Range(Closed(0, 1));
+  s->Add(
+      "quality.refine_on_edges", [](auto& o) -> auto& { return o.refine_on_edges; }, "",
+      "move each boundary to the centre of the image's blurred step near it");
+  s->Add(
+       "quality.edge_search_px", [](auto& o) -> auto& { return o.edge_search_px; }, "px",
+       "the image edge is looked for within this of the posterior's boundary")
+      .Range(Positive());
+  s->Add(
+       "quality.edge_min_snr", [](auto& o) -> auto& { return o.edge_min_snr; }, "",
+       "smallest edge step in units of the profile fit's noise")
+      .Range(NonNegative());
+  s->Add(
+       "quality.bootstrap_resamples", [](auto& o) -> auto& { return o.bootstrap_resamples; }, "",
+       "bootstrap resamples for the uncertainty of the statistic (0 = none)")
+      .Check([](const O& o) {
+        return o.bootstrap_resamples == 0 || o.bootstrap_resamples >= 2 ? "" : "must be 0 or >= 2";
+      });
+  s->Add(
+       "quality.confidence_z", [](auto& o) -> auto& { return o.confidence_z; }, "",
+       "bad when statistic − z·σ > threshold, good when statistic + z·σ <= threshold, else "
+       "cannot tell")
+      .Range(NonNegative());
   s->Add(
        "quality.sample_spacing_px", [](auto& o) -> auto& { return o.sample_spacing_px; }, "px",
        "spacing of the contour samples")

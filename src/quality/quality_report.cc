@@ -39,7 +39,8 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
                                        const Eigen::Isometry3d& cam_from_object,
                                        const std::string& image_path,
                                        const Eigen::Vector3d& object_centre,
-                                       double object_diameter_mm, const QualityOptions& options) {
+                                       double object_diameter_mm, const QualityOptions& options,
+                                       uint32_t seed) {
   BCOT_ASSIGN_OR_RETURN(const cv::Mat3b image, ReadCameraImage(image_path, camera));
   ViewFrameQuality quality;
   const Silhouette silhouette =
@@ -47,7 +48,8 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
   quality.points = static_cast<int>(silhouette.contour.size());
   if (silhouette.contour.empty()) {
     quality.median_px = quality.p90_px = quality.raw_median_px = quality.raw_p90_px = kNaN;
-    quality.bad = true;
+    quality.statistic_sigma_px = kNaN;
+    quality.verifiable = false;
     return quality;
   }
   ColorModelOptions color;
@@ -88,23 +90,42 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
     image(roi).convertTo(colour_roi, CV_32FC3, 1.0 / 255.0);
     cv::split(colour_roi, colour);
   }
-  const std::vector<double> offsets =
+  std::vector<double> offsets =
       BoundaryOffsets(silhouette.contour, posterior, roi, options, colour);
+  std::vector<double> sigmas;
+  if (options.refine_on_edges) {
+    RefinedOffsets refined = RefineOffsetsOnEdges(silhouette.contour, offsets, image, options);
+    offsets = std::move(refined.offsets);
+    sigmas = std::move(refined.sigmas_px);
+    quality.ambiguous = refined.ambiguous;
+  }
   for (double offset : offsets) quality.found += std::isfinite(offset) ? 1 : 0;
   quality.raw_median_px = AbsPercentile(offsets, 0.5);
   quality.raw_p90_px = AbsPercentile(offsets, 0.9);
+  const double fraction = options.statistic == QualityStatistic::kMedian ? 0.5 : 0.9;
+  quality.statistic_sigma_px = kNaN;
   if (options.fit_rigid_motion) {
-    const std::vector<double> fitted = FitRigidMotionOffsets(
-        silhouette.contour, offsets, camera, cam_from_object, object_centre, options.fit_scale_px);
+    const RigidMotionFitter fitter(silhouette.contour, camera, cam_from_object, object_centre);
+    const std::vector<double> fitted = fitter.Fit(offsets, sigmas, options.fit_scale_px);
     quality.median_px = AbsPercentile(fitted, 0.5);
     quality.p90_px = AbsPercentile(fitted, 0.9);
+    if (options.bootstrap_resamples > 0) {
+      quality.statistic_sigma_px = fitter.BootstrapPercentileSigma(
+          offsets, sigmas, options.fit_scale_px, fraction, options.bootstrap_resamples, seed);
+    }
   } else {
     quality.median_px = quality.raw_median_px;
     quality.p90_px = quality.raw_p90_px;
   }
+  // Verdict of the frame-view: a hypothesis test with the measurement's own uncertainty.
   const double statistic = quality.Statistic(options.statistic);
-  quality.bad = !std::isfinite(statistic) || statistic > options.threshold_px ||
-                quality.found < options.min_found_fraction * quality.points;
+  const double margin =
+      options.confidence_z *
+      (std::isfinite(quality.statistic_sigma_px) ? quality.statistic_sigma_px : 0.0);
+  const bool measurable =
+      std::isfinite(statistic) && quality.found >= options.min_found_fraction * quality.points;
+  quality.bad = measurable && statistic - margin > options.threshold_px;
+  quality.verifiable = measurable && (quality.bad || statistic + margin <= options.threshold_px);
   return quality;
 }
 
@@ -118,14 +139,14 @@ void Summarize(QualityReport* report) {
     summary.name = report->view_names[v];
     std::vector<double> medians;
     std::vector<std::pair<double, int>> ranked;
-    int unverifiable = 0;
     for (int f = 0; f < num_frames; ++f) {
       const ViewFrameQuality& q = report->frames[f][v];
       if (q.bad) ++summary.bad_frames;
       medians.push_back(q.median_px);
+      if (!q.verifiable) ++summary.unverified_frames;
+      // Frames without a measurement rank first among the worst (they need a look).
       const double statistic = q.Statistic(options.statistic);
       if (!std::isfinite(statistic) || q.found < options.min_found_fraction * q.points) {
-        ++unverifiable;
         ranked.push_back({std::numeric_limits<double>::infinity(), f});
       } else {
         ranked.push_back({statistic, f});
@@ -138,21 +159,25 @@ void Summarize(QualityReport* report) {
       summary.worst_frames.push_back(ranked[i].second);
     }
     summary.median_of_medians_px = AbsPercentile(medians, 0.5);
-    summary.bad_fraction = num_frames > 0 ? double(summary.bad_frames) / num_frames : 0.0;
+    if (num_frames > 0) {
+      summary.bad_fraction = double(summary.bad_frames) / num_frames;
+      summary.unverified_fraction = double(summary.unverified_frames) / num_frames;
+    }
     if (summary.bad_fraction > options.allowed_bad_fraction) {
-      std::string reason =
-          fmt::format("view {}: {} of {} frames ({:.0f}%) bad, {:.0f}% allowed", summary.name,
-                      summary.bad_frames, num_frames, 100.0 * summary.bad_fraction,
-                      100.0 * options.allowed_bad_fraction);
-      if (summary.bad_frames > unverifiable) {
-        reason +=
-            fmt::format("; worst {} {:.2f} px > {} px", QualityStatisticName(options.statistic),
-                        summary.worst_px, options.threshold_px);
-      }
-      if (unverifiable > 0) {
-        reason += fmt::format("; {} frames without a visible boundary", unverifiable);
-      }
-      report->reasons.push_back(reason);
+      report->reasons.push_back(fmt::format(
+          "view {}: {} of {} frames ({:.0f}%) bad, {:.0f}% allowed; worst {} {:.2f} px > {} px",
+          summary.name, summary.bad_frames, num_frames, 100.0 * summary.bad_fraction,
+          100.0 * options.allowed_bad_fraction, QualityStatisticName(options.statistic),
+          summary.worst_px, options.threshold_px));
+    }
+    if (summary.unverified_fraction > options.allowed_unverified_fraction) {
+      report->reasons.push_back(fmt::format(
+          "view {}: cannot tell on {} of {} frames ({:.0f}%, {:.0f}% allowed): object not in "
+          "view, fewer than {:.0f}% of its contour with a visible boundary, or {} within {}σ "
+          "of {} px",
+          summary.name, summary.unverified_frames, num_frames, 100.0 * summary.unverified_fraction,
+          100.0 * options.allowed_unverified_fraction, 100.0 * options.min_found_fraction,
+          QualityStatisticName(options.statistic), options.confidence_z, options.threshold_px));
     }
     report->views.push_back(summary);
   }
@@ -191,9 +216,10 @@ StatusOr<QualityReport> MeasureQuality(const Sequence& sequence, const RayCaster
     const int frame = job / static_cast<int>(indices.size());
     const int view = job % static_cast<int>(indices.size());
     const RigCamera& camera = sequence.rig[indices[view]];
-    StatusOr<ViewFrameQuality> quality = MeasureView(
-        caster, camera.camera, camera.cam_from_rig * rig_from_object[frame],
-        sequence.image_paths[indices[view]][frame], mesh.bbox_center(), mesh.diameter(), options);
+    StatusOr<ViewFrameQuality> quality =
+        MeasureView(caster, camera.camera, camera.cam_from_rig * rig_from_object[frame],
+                    sequence.image_paths[indices[view]][frame], mesh.bbox_center(), mesh.diameter(),
+                    options, static_cast<uint32_t>(job + 1));
     if (quality.ok()) {
       report.frames[frame][view] = *quality;
     } else {

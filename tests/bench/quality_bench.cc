@@ -13,9 +13,12 @@
 // view and the Pearson correlation of measured vs true (p90 and median) over all rows.
 //
 // Usage: quality_bench --sequence DIR [--poses FILE] [--perturbed] [--max-deg 1.5]
-//          [--max-mm 4] [--seed 1] [--offset-px 3] [--config FILE]
+//          [--max-mm 4] [--seed 1] [--offset-px 3 ...] [--rotate-px 2 ...] [--config FILE]
+//          [--frames N]
 // --offset-px: also ground truth as is and shifted so the object moves that far in cam0's image
-// (the accept / reject check).
+// (the accept / reject check); --rotate-px: ground truth rotated about cam0's optical axis
+// through the object centre so that its farthest contour point moves that far; --frames: only
+// the first N frames.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -69,45 +72,59 @@ double Pearson(const std::vector<double>& x, const std::vector<double>& y) {
 
 struct Rows {
   std::vector<double> measured_p90, true_p90, measured_median, true_median;
+  int unverifiable = 0;
   void Append(const Rows& other) {
     measured_p90.insert(measured_p90.end(), other.measured_p90.begin(), other.measured_p90.end());
     true_p90.insert(true_p90.end(), other.true_p90.begin(), other.true_p90.end());
     measured_median.insert(measured_median.end(), other.measured_median.begin(),
                            other.measured_median.end());
     true_median.insert(true_median.end(), other.true_median.begin(), other.true_median.end());
+    unverifiable += other.unverifiable;
   }
 };
 
 void PrintCorrelation(const std::string& label, const Rows& rows) {
   if (rows.true_p90.size() < 3) return;
-  double mean_abs_difference = 0.0;
+  double mean_abs_difference = 0.0, within = 0.0, ratio = 0.0;
+  int ratio_rows = 0;
+  const double n = static_cast<double>(rows.true_p90.size());
   for (size_t i = 0; i < rows.true_p90.size(); ++i) {
-    mean_abs_difference += std::abs(rows.measured_p90[i] - rows.true_p90[i]) / rows.true_p90.size();
+    const double difference = rows.measured_p90[i] - rows.true_p90[i];
+    mean_abs_difference += std::abs(difference) / n;
+    within += (std::abs(difference) <= 0.5 ? 1.0 : 0.0) / n;
+    if (rows.true_p90[i] >= 0.5) {  // the ratio means nothing near zero
+      ratio += rows.measured_p90[i] / rows.true_p90[i];
+      ++ratio_rows;
+    }
   }
+  ratio = ratio_rows > 0 ? ratio / ratio_rows : std::numeric_limits<double>::quiet_NaN();
   std::printf(
-      "%-10s rows %zu  pearson(p90) %.3f  pearson(median) %.3f  mean |meas-true| p90 %.3f px\n",
-      label.c_str(), rows.true_p90.size(), Pearson(rows.measured_p90, rows.true_p90),
-      Pearson(rows.measured_median, rows.true_median), mean_abs_difference);
+      "%-10s rows %zu (+%d cannot tell)  pearson(p90) %.3f  pearson(median) %.3f  "
+      "mean |meas-true| p90 %.3f px  within 0.5 px %.1f%%  mean meas/true p90 (true >= 0.5 px) "
+      "%.2f\n",
+      label.c_str(), rows.true_p90.size(), rows.unverifiable,
+      Pearson(rows.measured_p90, rows.true_p90), Pearson(rows.measured_median, rows.true_median),
+      mean_abs_difference, 100.0 * within, ratio);
 }
 
-int Run(const std::string& sequence_dir, const std::string& label,
-        const std::vector<Eigen::Isometry3d>& rig_from_object, const QualityOptions& options,
-        Rows* rows) {
+// `sequence` and `gt` hold the same frames; `rig_from_object` has at least as many poses.
+int Run(const Sequence& sequence_in, const std::vector<Eigen::Isometry3d>& gt_in,
+        const std::string& label, std::vector<Eigen::Isometry3d> rig_from_object,
+        const QualityOptions& options, Rows* rows) {
   Rows mine;
-  const StatusOr<Sequence> sequence = LoadSequence(sequence_dir, false);
-  const StatusOr<std::vector<Eigen::Isometry3d>> gt =
-      ReadPoseFile(sequence_dir + "/gt/rig_from_object.txt");
-  if (!sequence.ok() || !gt.ok()) {
-    std::fprintf(stderr, "quality_bench: %s\n",
-                 (!sequence.ok() ? sequence.status() : gt.status()).message().c_str());
-    return 1;
-  }
+  const Sequence* sequence = &sequence_in;
+  const std::vector<Eigen::Isometry3d>* gt = &gt_in;
+  rig_from_object.resize(gt->size());
   const StatusOr<QualityReport> report = MeasureQuality(*sequence, rig_from_object, {}, options);
   if (!report.ok()) {
     std::fprintf(stderr, "quality_bench: %s\n", report.status().message().c_str());
     return 1;
   }
   const StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
+  if (!mesh.ok()) {
+    std::fprintf(stderr, "quality_bench: %s\n", mesh.status().message().c_str());
+    return 1;
+  }
   const RayCaster caster(*mesh);
   ContourOptions dense;
   dense.sample_spacing_px = 0.5;
@@ -127,10 +144,12 @@ int Run(const std::string& sequence_dir, const std::string& label,
       const ViewFrameQuality& q = report->frames[f][v];
       const double true_p90 = AbsPercentile(distances, 0.9);
       const double true_median = AbsPercentile(distances, 0.5);
-      std::printf("%-10s %5d %-6s %10.3f %10.3f %10.3f %10.3f %7d/%d\n", label.c_str(), f,
-                  camera.camera.name.c_str(), q.p90_px, true_p90, q.median_px, true_median, q.found,
-                  q.points);
-      if (std::isfinite(q.p90_px) && std::isfinite(true_p90)) {
+      std::printf("%-10s %5d %-6s %10.3f %10.3f %10.3f %10.3f %8.3f %7d/%d%s\n", label.c_str(), f,
+                  camera.camera.name.c_str(), q.p90_px, true_p90, q.median_px, true_median,
+                  q.statistic_sigma_px, q.found, q.points, q.verifiable ? "" : " cannot-tell");
+      if (!q.verifiable) {
+        ++mine.unverifiable;
+      } else if (std::isfinite(q.p90_px) && std::isfinite(true_p90)) {
         mine.measured_p90.push_back(q.p90_px);
         mine.true_p90.push_back(true_p90);
         mine.measured_median.push_back(q.median_px);
@@ -138,7 +157,9 @@ int Run(const std::string& sequence_dir, const std::string& label,
       }
     }
   }
-  std::printf("%-10s verdict: %s\n", label.c_str(), report->accepted ? "accepted" : "rejected");
+  std::printf("%-10s verdict: %s", label.c_str(), report->accepted ? "accepted" : "rejected");
+  for (const std::string& reason : report->reasons) std::printf(" [%s]", reason.c_str());
+  std::printf("\n");
   PrintCorrelation(label, mine);
   rows->Append(mine);
   return 0;
@@ -153,15 +174,21 @@ int main(int argc, char** argv) {
   bool perturbed = false;
   double max_deg = 1.5, max_mm = 4.0;
   int seed = 1;
-  double offset_px = 0.0;
+  std::vector<double> offsets_px, rotations_px;
+  int max_frames = 0;
   app.add_option("--sequence", sequence_dir, "Synthetic sequence (with gt/)")->required();
   app.add_option("--poses", poses_path, "Annotated rig_from_object.txt");
   app.add_flag("--perturbed", perturbed, "Also: ground truth perturbed per frame");
   app.add_option("--max-deg", max_deg, "Largest perturbation rotation (deg)");
   app.add_option("--max-mm", max_mm, "Largest perturbation translation (mm)");
   app.add_option("--seed", seed, "Perturbation seed");
-  app.add_option("--offset-px", offset_px,
-                 "Also: ground truth shifted so the object moves this far in cam0's image");
+  app.add_option("--offset-px", offsets_px,
+                 "Also: ground truth as is and shifted so the object moves this far in cam0's "
+                 "image (repeatable)");
+  app.add_option("--rotate-px", rotations_px,
+                 "Also: ground truth rotated about cam0's axis so its farthest contour point "
+                 "moves this far (repeatable)");
+  app.add_option("--frames", max_frames, "Only the first N frames (0 = all)");
   app.add_option("--config", config_path, "Annotate config (its quality: section is used)");
   std::vector<std::string> overrides;
   app.add_option("--set", overrides, "Config override key=value (repeatable)");
@@ -172,21 +199,40 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "quality_bench: %s\n", options.status().message().c_str());
     return 2;
   }
-  std::printf("%-10s %5s %-6s %10s %10s %10s %10s %9s\n", "poses", "frame", "view", "meas_p90",
-              "true_p90", "meas_med", "true_med", "found");
+  StatusOr<Sequence> sequence = LoadSequence(sequence_dir, false);
+  StatusOr<std::vector<Eigen::Isometry3d>> gt =
+      ReadPoseFile(sequence_dir + "/gt/rig_from_object.txt");
+  if (!sequence.ok() || !gt.ok()) {
+    std::fprintf(stderr, "quality_bench: %s\n",
+                 (!sequence.ok() ? sequence.status() : gt.status()).message().c_str());
+    return 1;
+  }
+  if (max_frames > 0 && max_frames < sequence->num_frames) {
+    sequence->num_frames = max_frames;
+    for (std::vector<std::string>& paths : sequence->image_paths) paths.resize(max_frames);
+    if (!sequence->timestamps_ns.empty()) sequence->timestamps_ns.resize(max_frames);
+  }
+  gt->resize(sequence->num_frames);
+  std::printf("%-10s %5s %-6s %10s %10s %10s %10s %8s %9s\n", "poses", "frame", "view", "meas_p90",
+              "true_p90", "meas_med", "true_med", "sigma", "found");
   Rows rows;
+  auto run = [&](const std::string& label, const std::vector<Eigen::Isometry3d>& poses) {
+    return Run(*sequence, *gt, label, poses, options->quality, &rows);
+  };
   if (!poses_path.empty()) {
     const StatusOr<std::vector<Eigen::Isometry3d>> poses = ReadPoseFile(poses_path);
     if (!poses.ok()) {
       std::fprintf(stderr, "quality_bench: %s\n", poses.status().message().c_str());
       return 1;
     }
-    if (Run(sequence_dir, "annotated", *poses, options->quality, &rows) != 0) return 1;
+    if (poses->size() < gt->size()) {
+      std::fprintf(stderr, "quality_bench: %s: %zu poses for %zu frames\n", poses_path.c_str(),
+                   poses->size(), gt->size());
+      return 1;
+    }
+    if (run("annotated", *poses) != 0) return 1;
   }
   if (perturbed) {
-    const StatusOr<std::vector<Eigen::Isometry3d>> gt =
-        ReadPoseFile(sequence_dir + "/gt/rig_from_object.txt");
-    if (!gt.ok()) return 1;
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     std::normal_distribution<double> normal(0.0, 1.0);
@@ -204,24 +250,45 @@ int main(int argc, char** argv) {
       rig_from_object = Eigen::Translation3d(delta.translation()) * rig_from_object *
                         Eigen::Isometry3d(delta.linear());
     }
-    if (Run(sequence_dir, "perturbed", poses, options->quality, &rows) != 0) return 1;
+    if (run("perturbed", poses) != 0) return 1;
   }
-  if (offset_px > 0) {
-    const StatusOr<Sequence> sequence = LoadSequence(sequence_dir, false);
-    const StatusOr<std::vector<Eigen::Isometry3d>> gt =
-        ReadPoseFile(sequence_dir + "/gt/rig_from_object.txt");
-    if (!sequence.ok() || !gt.ok()) return 1;
-    const RigCamera& cam0 = sequence->rig[0];
-    for (const double shift : {0.0, offset_px}) {
+  const RigCamera& cam0 = sequence->rig[0];
+  if (!offsets_px.empty()) offsets_px.insert(offsets_px.begin(), 0.0);
+  for (const double shift : offsets_px) {
+    std::vector<Eigen::Isometry3d> poses = *gt;
+    for (Eigen::Isometry3d& rig_from_object : poses) {
+      const double depth = (cam0.cam_from_rig * rig_from_object).translation().z();
+      rig_from_object.pretranslate(cam0.cam_from_rig.linear().transpose() *
+                                   Eigen::Vector3d(shift * depth / cam0.camera.fx, 0, 0));
+    }
+    if (run(fmt::format("gt+{}px", shift), poses) != 0) return 1;
+  }
+  if (!rotations_px.empty()) {
+    const StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
+    if (!mesh.ok()) return 1;
+    const RayCaster caster(*mesh);
+    for (const double move : rotations_px) {
       std::vector<Eigen::Isometry3d> poses = *gt;
       for (Eigen::Isometry3d& rig_from_object : poses) {
-        const double depth = (cam0.cam_from_rig * rig_from_object).translation().z();
-        rig_from_object.pretranslate(cam0.cam_from_rig.linear().transpose() *
-                                     Eigen::Vector3d(shift * depth / cam0.camera.fx, 0, 0));
+        // Farthest contour point from the projected object centre in cam0 (px).
+        const Eigen::Isometry3d cam_from_object = cam0.cam_from_rig * rig_from_object;
+        const Eigen::Vector3d centre_in_cam = cam_from_object * mesh->bbox_center();
+        const Eigen::Vector2d centre = cam0.camera.Project(centre_in_cam);
+        double radius = 0.0;
+        for (const ContourPoint& point : caster.ExtractContour(cam0.camera, cam_from_object)) {
+          radius = std::max(radius, (point.pixel - centre).norm());
+        }
+        if (radius <= 0.0) continue;
+        // Rotation about cam0's optical axis through the object centre, in rig coordinates.
+        const Eigen::Vector3d axis =
+            cam0.cam_from_rig.linear().transpose() * Eigen::Vector3d::UnitZ();
+        const Eigen::Vector3d pivot = rig_from_object * mesh->bbox_center();
+        const Eigen::Isometry3d rotate = Eigen::Translation3d(pivot) *
+                                         Eigen::AngleAxisd(move / radius, axis) *
+                                         Eigen::Translation3d(-pivot);
+        rig_from_object = rotate * rig_from_object;
       }
-      if (Run(sequence_dir, fmt::format("gt+{}px", shift), poses, options->quality, &rows) != 0) {
-        return 1;
-      }
+      if (run(fmt::format("gt~rot{}px", move), poses) != 0) return 1;
     }
   }
   PrintCorrelation("all", rows);

@@ -174,6 +174,36 @@ TEST(QualityReportTest, RigidMotionFitIgnoresOutliersAndKeepsThePoseError) {
        FitRigidMotionOffsets(contour, sparse, camera, cam_from_object, mesh->bbox_center(), 1.0)) {
     EXPECT_TRUE(std::isnan(value));
   }
+
+  const RigidMotionFitter fitter(contour, camera, cam_from_object, mesh->bbox_center());
+  // Standard deviations weigh the offsets: with the outliers marked uncertain (5 px) and the
+  // rest certain (0.05 px), even a plain least-squares fit (a scale so large that no robust
+  // weight acts) explains the true offsets, which it does not without them.
+  std::vector<double> sigmas(contour.size(), 0.05);
+  for (size_t i = 0; i < contour.size(); ++i) {
+    if (std::isfinite(observed[i]) && std::abs(observed[i] - truth[i]) > 0.5) sigmas[i] = 5.0;
+  }
+  auto worst_error = [&](const std::vector<double>& offsets) {
+    double worst_error = 0.0;
+    for (size_t i = 0; i < contour.size(); ++i) {
+      worst_error = std::max(worst_error, std::abs(offsets[i] - truth[i]));
+    }
+    return worst_error;
+  };
+  EXPECT_LT(worst_error(fitter.Fit(observed, sigmas, /*scale_px=*/1e3)), 0.1);
+  EXPECT_GT(worst_error(fitter.Fit(observed, {}, /*scale_px=*/1e3)), 0.2);
+
+  // The bootstrap spread of the fitted p90 is a few hundredths of a px for 0.2 px noise,
+  // grows with the noise, and is reproducible for a seed.
+  const double clean = fitter.BootstrapPercentileSigma(observed, {}, 1.0, 0.9, 32, 5);
+  EXPECT_GT(clean, 0.0);
+  EXPECT_LT(clean, 0.05);
+  EXPECT_EQ(clean, fitter.BootstrapPercentileSigma(observed, {}, 1.0, 0.9, 32, 5));
+  std::vector<double> noisy = truth;
+  for (double& offset : noisy) offset += 2.0 * (unit(random) - 0.5);
+  EXPECT_GT(fitter.BootstrapPercentileSigma(noisy, {}, 1.0, 0.9, 32, 5), 2 * clean);
+  EXPECT_TRUE(std::isnan(fitter.BootstrapPercentileSigma(sparse, {}, 1.0, 0.9, 32, 5)));
+  EXPECT_TRUE(std::isnan(fitter.BootstrapPercentileSigma(observed, {}, 1.0, 0.9, 1, 5)));
 }
 
 TEST(QualityReportTest, AbsPercentileIgnoresNaN) {
@@ -309,6 +339,12 @@ TEST_F(QualityOnSynthTest, WritesJsonCsvAndSelfContainedHtml) {
   EXPECT_EQ(json["verdict"], "accepted");
   EXPECT_EQ(json["frames"].size(), 6u);
   EXPECT_EQ(json["views"][0]["name"], "cam1");
+  EXPECT_EQ(json["views"][0]["unverified_frames"], 0);
+  const nlohmann::json& first = json["frames"][0]["views"][0];
+  EXPECT_TRUE(first["verifiable"].get<bool>());
+  EXPECT_GT(first["statistic_sigma_px"].get<double>(), 0.0);
+  EXPECT_LT(first["statistic_sigma_px"].get<double>(), 0.5);
+  EXPECT_GT(first["found"].get<int>(), first["points"].get<int>() / 2);
   const std::vector<std::string> csv = SplitLines(*ReadTextFile(out.File("quality.csv")));
   EXPECT_EQ(csv.size(), 1u + 6u);
   const std::string html = *ReadTextFile(out.File("report.html"));
@@ -325,6 +361,41 @@ TEST_F(QualityOnSynthTest, WritesJsonCsvAndSelfContainedHtml) {
   EXPECT_EQ(in_memory.accepted, verdict->accepted);
   EXPECT_EQ(in_memory.frames, verdict->frames);
   EXPECT_NEAR(in_memory.worst_px, verdict->worst_px, 1e-9);
+  EXPECT_EQ(verdict->bad_frame_views, 0);
+  EXPECT_EQ(verdict->unverified_frame_views, 0);
+}
+
+// A frame-view without the object cannot be told: it is not bad, it is counted apart, and the
+// sequence is rejected only when such frames exceed allowed_unverified_fraction, with a reason
+// that says so.
+TEST_F(QualityOnSynthTest, FramesWithoutTheObjectCannotBeToldAndAreNotBad) {
+  const StatusOr<Sequence> sequence = LoadSequence(dir_->File("seq"));
+  ASSERT_TRUE(sequence.ok());
+  StatusOr<std::vector<Eigen::Isometry3d>> poses =
+      ReadPoseFile(dir_->File("seq/gt/rig_from_object.txt"));
+  ASSERT_TRUE(poses.ok());
+  for (int f : {0, 1}) (*poses)[f].pretranslate(Eigen::Vector3d(0, 0, -1e5));  // behind the rig
+  QualityOptions options;
+  const StatusOr<QualityReport> strict = MeasureQuality(*sequence, *poses, {}, options);
+  ASSERT_TRUE(strict.ok()) << strict.status().message();
+  for (int f : {0, 1}) {
+    for (const ViewFrameQuality& q : strict->frames[f]) {
+      EXPECT_FALSE(q.verifiable);
+      EXPECT_FALSE(q.bad);
+    }
+  }
+  for (const ViewQualitySummary& view : strict->views) {
+    EXPECT_EQ(view.unverified_frames, 2) << view.name;
+    EXPECT_EQ(view.bad_frames, 0) << view.name;
+  }
+  EXPECT_FALSE(strict->accepted);  // 2 of 6 > 25 %
+  ASSERT_EQ(strict->reasons.size(), 2u);
+  EXPECT_THAT(strict->reasons[0], HasSubstr("cannot tell on 2 of 6 frames"));
+  EXPECT_EQ(VerdictOf(*strict).unverified_frame_views, 4);
+  options.allowed_unverified_fraction = 0.5;
+  const StatusOr<QualityReport> lenient = MeasureQuality(*sequence, *poses, {}, options);
+  ASSERT_TRUE(lenient.ok());
+  EXPECT_TRUE(lenient->accepted);
 }
 
 }  // namespace

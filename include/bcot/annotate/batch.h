@@ -74,6 +74,8 @@ struct BatchSequenceResult {
   int frames = 0;
   bool accepted = false;             // quality verdict (not kFailed)
   double worst_px = 0.0;             // worst per frame-view statistic
+  int bad_frame_views = 0;           // frame-views above the quality threshold
+  int unverified_frame_views = 0;    // frame-views the quality check cannot tell
   std::vector<std::string> reasons;  // why rejected
   double seconds = 0.0;              // wall time of this run (information only)
 };

@@ -88,6 +88,14 @@ struct EdgeFit {
 bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
                     const EdgeLineOptions& options, EdgeFit* fit);
 
+// The edge across one line (the profile, contrast direction and fit above) through `centre`
+// along the unit `normal` (inside → outside) of `image` (BGR, sRGB): kFound and `fit` (offsets
+// along the normal from centre, σ unfloored), or why not.
+enum class EdgeAcross { kFound, kOffImage, kAmbiguous };
+EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const Eigen::Vector2d& centre,
+                         const Eigen::Vector2d& normal, const EdgeLineOptions& options,
+                         EdgeFit* fit);
+
 // Builds the edge lines of one view at T0 (rig_from_objcentre). `silhouette` must be
 // RenderSilhouette at cam_from_rig · T0 · objcentre_from_template. Errors as
 // BuildCorrespondenceLines.

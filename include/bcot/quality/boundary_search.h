@@ -20,6 +20,25 @@ std::vector<double> BoundaryOffsets(const std::vector<ContourPoint>& contour,
                                     const QualityOptions& options,
                                     const std::vector<cv::Mat1f>& colour = {});
 
+// Step 3b (options.refine_on_edges): moves each boundary found above to the centre of the
+// image's own blurred step near it and gives it a standard deviation. Along the normal, the
+// linear-RGB profile around the found boundary t is projected on its contrast direction (mean
+// colour over [t − W, t − 1] minus that over [t + 1, t + W]) and the blurred step of
+// FitEdgeProfile (bcot/optim/edge_lines.h) is fitted within ±edge_search_px of t: a colour
+// posterior puts the boundary where the two sides' likelihoods cross, which a shaded rim, a
+// highlight or similar colours move by a pixel or more, while the centre of the blurred step
+// stays at the geometric edge. A point whose profile holds no such step (no contrast, no
+// convergence, a step below edge_min_snr times the fit's noise, blur outside [0.15, 2.5] px,
+// the window off the image) becomes NaN: the boundary is not visible there.
+struct RefinedOffsets {
+  std::vector<double> offsets;    // px, NaN where none
+  std::vector<double> sigmas_px;  // standard deviation of each finite offset (px)
+  int ambiguous = 0;              // points found in step 3 that the refinement discarded
+};
+RefinedOffsets RefineOffsetsOnEdges(const std::vector<ContourPoint>& contour,
+                                    const std::vector<double>& offsets, const cv::Mat3b& image,
+                                    const QualityOptions& options);
+
 // Median and 90th percentile of |values| ignoring NaN; NaN when none is finite.
 double AbsPercentile(const std::vector<double>& values, double fraction);
 

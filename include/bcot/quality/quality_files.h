@@ -32,6 +32,8 @@ struct QualityVerdict {
   std::vector<std::string> reasons;
   double worst_px = 0.0;
   int frames = 0;
+  int bad_frame_views = 0;         // frame-views measured above the threshold
+  int unverified_frame_views = 0;  // frame-views that cannot be told (see quality_report.h)
 };
 // The verdict of a measurement in memory.
 QualityVerdict VerdictOf(const QualityReport& report);

@@ -33,8 +33,27 @@ struct QualityOptions {
   double edge_weight = 0.0;
   // Minimum score for a boundary to count as found; in (0, 1 + edge_weight).
   double min_contrast = 0.3;
-  // Below this fraction of contour points with a boundary, the frame-view is bad; in [0, 1].
+  // Below this fraction of contour points with a usable boundary, the frame-view cannot be
+  // verified ("cannot tell": occluded, camouflaged, no visible edge); in [0, 1].
   double min_found_fraction = 0.5;
+  // A view may be unverifiable on at most this fraction of frames (the sequence is rejected
+  // otherwise: its annotation cannot be checked); in [0, 1].
+  double allowed_unverified_fraction = 0.25;
+  // Step 3b: move each boundary to the centre of the image's blurred step near it (see
+  // RefineOffsetsOnEdges), discarding points without a visible edge. false = the colour
+  // posterior's step alone.
+  bool refine_on_edges = true;
+  // The image edge is looked for within ± this of the step-3 boundary (px); > 0.
+  double edge_search_px = 2.0;
+  // Smallest edge step in units of its profile fit's residual standard deviation; >= 0.
+  double edge_min_snr = 4.0;
+  // Bootstrap resamples of the contour points for the uncertainty σ of the judged statistic
+  // (statistic_sigma_px); 0 = none, else >= 2.
+  int bootstrap_resamples = 32;
+  // A frame-view is bad when its statistic − confidence_z·σ exceeds threshold_px, good when its
+  // statistic + confidence_z·σ does not, and cannot be told in between (the measurement cannot
+  // decide); 0 = compare the statistic alone; >= 0.
+  double confidence_z = 2.0;
   // Spacing of the contour samples (px); > 0.
   double sample_spacing_px = 2.0;
   // Histogram bins per channel of the colour model (must divide 256).
@@ -51,7 +70,7 @@ struct QualityOptions {
   // of the raw offsets themselves (step 5 above).
   bool fit_rigid_motion = true;
   // Scale of the robust fit (px): Huber threshold, Tukey's at 3×; > 0.
-  double fit_scale_px = 1.0;
+  double fit_scale_px = 0.5;
   // Worst frames per view shown as thumbnails in report.html; >= 0.
   int worst_frames = 4;
   // Longest side of a thumbnail (px); >= 32.

@@ -17,25 +17,38 @@
 //      below min_contrast (no visible boundary: occlusion, camouflage) gives no sample.
 //      With edge_weight > 0 the score adds the image's RGB step over the same windows, which
 //      helps where object and background colours overlap (P_f ambiguous).
-//   4. The signed offset t* is the point's raw boundary offset (px).
+//   4. (refine_on_edges, default) Each boundary t is moved to the centre of the image's own
+//      blurred step within ±edge_search_px of it (RefineOffsetsOnEdges in boundary_search.h),
+//      which gives it a standard deviation; a point whose profile shows no clean step is
+//      dropped (not usable). The posterior finds *which* transition is the object's boundary
+//      (robust to clutter of other colours), the edge fit *where* it is: a posterior puts it
+//      where the two sides' colour likelihoods cross, which a shaded rim, a highlight or similar
+//      colours move by a pixel or more; the centre of a blurred step does not move. The signed
+//      offset t* is the point's raw boundary offset (px).
 //   5. (fit_rigid_motion, default) A pose error moves the whole contour coherently, while a
 //      boundary found on a clutter edge, a highlight or a blurred edge is wrong at that point
 //      only. So fit the small rigid motion of the object that best explains the raw offsets
-//      (FitRigidMotionOffsets: robust least squares, linearised projection) and take the offset
-//      that motion produces at every contour point as its reprojection error. To first order
-//      this is exactly the true projected contour error of the pose when the image boundary is
-//      the true contour. The frame-view reports the median and the 90th percentile of |offset|
-//      (the raw statistics are kept beside them in quality.json / .csv).
+//      (RigidMotionFitter: robust least squares weighted by the offsets' variances, linearised
+//      projection) and take the offset that motion produces at every contour point as its
+//      reprojection error. To first order this is exactly the true projected contour error of
+//      the pose when the image boundary is the true contour. The frame-view reports the median
+//      and the 90th percentile of |offset| (the raw statistics are kept beside them in
+//      quality.json / .csv), and the standard deviation of the judged statistic over
+//      bootstrap resamples of the usable points (bootstrap_resamples).
 // Why p90 by default: shifting the object 3 px in the image moves its contour by 3·|cos θ| along
 // the normals, a median of only ~2 px, so the median cannot separate a 3 px error from the 2 px
 // threshold; the p90 (~2.9 px) can.
 // Measured by scripts/bench_quality.sh (measured vs true p90 over ground truth, ground truth
 // shifted 3 px and randomly perturbed poses): see the numbers in the README's quality section.
 //
-// A frame-view is *bad* when its `statistic` (p90 by default) exceeds threshold_px, or when
-// fewer than min_found_fraction of its contour points found a boundary (the annotation cannot
-// be verified there), or when the object is not in the view. A sequence is rejected when, for
-// any view, the fraction of bad frames exceeds allowed_bad_fraction.
+// A frame-view is *unverifiable* ("cannot tell") when the object is not in the view or fewer
+// than min_found_fraction of its contour points have a usable boundary (occluded, camouflaged,
+// no visible edge). Otherwise, with s its `statistic` (p90 by default), σ the bootstrap
+// standard deviation of s and z = confidence_z: *bad* when s − z·σ > threshold_px, good when
+// s + z·σ <= threshold_px, and unverifiable in between (the boundary offsets cannot decide: a
+// few points far from the centre, an unstable fit). A sequence is rejected when, for any view, the
+// fraction of bad frames exceeds allowed_bad_fraction or the fraction of unverifiable frames
+// exceeds allowed_unverified_fraction; the reasons say which.
 //
 // Files (bcot/quality/quality_files.h; each written atomically):
 //   quality.json   options, verdict, reasons, per view summary, per frame and view numbers
@@ -64,8 +77,13 @@ struct ViewFrameQuality {
   // The same statistics of the raw boundary offsets.
   double raw_median_px = 0.0;
   double raw_p90_px = 0.0;
-  int points = 0;  // contour samples
-  int found = 0;   // samples with a boundary
+  // Standard deviation of the judged statistic (bootstrap over the usable points); NaN when not
+  // computed (bootstrap_resamples = 0, too few points).
+  double statistic_sigma_px = 0.0;
+  int points = 0;          // contour samples
+  int found = 0;           // samples with a usable boundary
+  int ambiguous = 0;       // samples whose posterior boundary had no clean image edge (step 4)
+  bool verifiable = true;  // false: "cannot tell" (see above); then bad is false too
   bool bad = false;
   double Statistic(QualityStatistic statistic) const {
     return statistic == QualityStatistic::kMedian ? median_px : p90_px;
@@ -76,6 +94,8 @@ struct ViewQualitySummary {
   std::string name;
   int bad_frames = 0;
   double bad_fraction = 0.0;
+  int unverified_frames = 0;
+  double unverified_fraction = 0.0;
   double median_of_medians_px = 0.0;
   double worst_px = 0.0;          // largest statistic over frames (NaN frames skipped)
   std::vector<int> worst_frames;  // frame indices, worst first

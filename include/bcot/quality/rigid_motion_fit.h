@@ -1,8 +1,10 @@
 // Step 5 of the quality measurement (bcot/quality/quality_report.h): the part of the raw
-// boundary offsets that one small rigid motion of the object explains.
+// boundary offsets that one small rigid motion of the object explains, and how well the
+// contour points pin that motion down.
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <vector>
 
 #include "bcot/core/camera.h"
@@ -10,11 +12,36 @@
 
 namespace bcot {
 
-// The offsets along the normals that the best rigid motion of the object explains (step 5):
-// robust (Huber, then Tukey) least squares fit of a small motion δ = (ω, v) about
-// `object_centre` (object frame) to the finite `offsets` (one per contour point, NaN = none),
-// with the first-order model offset_i = n_iᵀ · ∂x_i/∂δ · δ; returns that model's offset at every
-// contour point (all NaN when fewer than 6 offsets carry weight). `scale_px` > 0.
+// Fits a small motion δ = (ω, v) of the object about `object_centre` (object frame) to boundary
+// offsets along the contour normals, with the first-order model offset_i = n_iᵀ · ∂x_i/∂δ · δ
+// (step 5 of bcot/quality/quality_report.h). The model rows depend only on the contour and
+// the pose, so one fitter serves the fit and its bootstrap.
+class RigidMotionFitter {
+ public:
+  RigidMotionFitter(const std::vector<ContourPoint>& contour, const Camera& camera,
+                    const Eigen::Isometry3d& cam_from_object, const Eigen::Vector3d& object_centre);
+
+  // Robust (Huber, then Tukey; scale `scale_px` > 0) weighted least squares on the finite
+  // `offsets` (one per contour point, NaN = none). `sigmas_px` (empty = all equal) are the
+  // offsets' standard deviations: point i weighs 1 / (σ_i² + σ_model²), σ_model = 0.1 px (mesh
+  // facets, the linearisation). `multiplicity` (empty = all 1) counts each point that many
+  // times (a bootstrap resample). Returns the model's offset at every contour point, all NaN
+  // when fewer than 6 points carry weight.
+  std::vector<double> Fit(const std::vector<double>& offsets, const std::vector<double>& sigmas_px,
+                          double scale_px, const std::vector<int>& multiplicity = {}) const;
+
+  // Standard deviation of the `fraction` percentile of |fitted offset| over `resamples`
+  // bootstrap resamples of the contour points with a finite offset (seeded by `seed`, so the
+  // result is reproducible); NaN when fewer than 6 points have an offset or resamples < 2.
+  double BootstrapPercentileSigma(const std::vector<double>& offsets,
+                                  const std::vector<double>& sigmas_px, double scale_px,
+                                  double fraction, int resamples, uint32_t seed) const;
+
+ private:
+  Eigen::Matrix<double, Eigen::Dynamic, 6> rows_;
+};
+
+// RigidMotionFitter(contour, ...).Fit(offsets, {}, scale_px).
 std::vector<double> FitRigidMotionOffsets(const std::vector<ContourPoint>& contour,
                                           const std::vector<double>& offsets, const Camera& camera,
                                           const Eigen::Isometry3d& cam_from_object,
