@@ -11,11 +11,13 @@
 # Usage: scripts/bench_quality.sh [frames per synthetic sequence, default 20] [--pbr]
 #          [--set key=value ...]
 #   --pbr   also the physically based sequences of configs/pbr/ (bunny_plastic,
-#           pinion_metal_moving_light, spool_dark, bunny_bright_soft; rendered with Blender as in
+#           pinion_metal_moving_light, spool_dark; rendered with Blender as in
 #           scripts/bench_pbr.sh, cached under out/pbr/; needs scripts/setup.sh --with-blender)
 #   --set   quality options for the measurement, e.g. --set quality.refine_on_edges=false
 #           --set quality.fit_scale_px=1 (the colour-posterior boundary before issue 18).
-# Environment: BCOT_BENCH_WORK (default out/bench_quality).
+# Environment: BCOT_BENCH_WORK (default out/bench_quality), BCOT_BENCH_BUILD (an existing
+# Release build directory configured with -DBCOT_BUILD_BENCHMARKS=ON, used as it is; default:
+# build-bench, configured here).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 frames=20
@@ -30,9 +32,11 @@ while [ $# -gt 0 ]; do
   esac
 done
 work=${BCOT_BENCH_WORK:-out/bench_quality}
-dir=build-bench
-cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
-  -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
+dir=${BCOT_BENCH_BUILD:-build-bench}
+if [ -z "${BCOT_BENCH_BUILD:-}" ]; then
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
+    -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
+fi
 cmake --build "$dir" --target bcot quality_bench >/dev/null
 mkdir -p "$work"
 names=() seqs=() extra=()
@@ -46,7 +50,7 @@ for name in demo glossy_fast; do
 done
 if [ "$pbr" = 1 ]; then
   for spec in configs/pbr/bunny_plastic.json configs/pbr/pinion_metal_moving_light.json \
-              configs/pbr/spool_dark.json configs/pbr/bunny_bright_soft.json; do
+              configs/pbr/spool_dark.json; do
     key=$(/usr/bin/python3 scripts/pbr/spec_key.py "$spec")
     seq=out/pbr/$key
     if [ ! -d "$seq" ]; then

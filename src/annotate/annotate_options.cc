@@ -74,7 +74,7 @@ void DeclareRegionAndCost(OptionSchema<AnnotateOptions>* s) {
        "region.contour_sample_spacing_px",
        [](auto& o) -> auto& { return o.tracker.frame.region.contour.sample_spacing_px; }, "px",
        "spacing of the template's contour samples")
-      .Range(Positive());
+      .Range(Closed(0.05, 1000));
   s->Add(
        "region.contour_precision_px",
        [](auto& o) -> auto& { return o.tracker.frame.region.contour.precision_px; }, "px",
@@ -290,6 +290,10 @@ void DeclareViewsAndWindow(OptionSchema<AnnotateOptions>* s) {
       .Range(NonNegative())
       .Check([](const AnnotateOptions& o) -> std::string {
         const ViewSelection& v = o.views;
+        if (!v.weights.empty() &&
+            std::none_of(v.weights.begin(), v.weights.end(), [](double w) { return w > 0; })) {
+          return "must hold at least one weight > 0 (all views would be ignored)";
+        }
         if (v.weights.empty() || v.cameras.empty() || v.weights.size() == v.cameras.size()) {
           return "";
         }

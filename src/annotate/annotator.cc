@@ -23,6 +23,42 @@
 namespace bcot {
 namespace {
 
+// The pose of frame 0 must show the object to at least one selected view: centre in front of
+// the camera, no farther than 1000 object diameters, and projecting within the image grown by
+// half its size on each side (partly visible objects are fine). Anything else is a typo in
+// init_pose.txt (a unit, a sign, a transposed matrix) that no solve can recover from.
+Status CheckInitialPose(const Sequence& sequence, const std::vector<TrackedView>& views,
+                        const Mesh& mesh) {
+  const Eigen::Vector3d centre_in_rig = *sequence.init_rig_from_object * mesh.bbox_center();
+  std::vector<std::string> where;
+  for (const TrackedView& view : views) {
+    const Camera& camera = view.camera;
+    const Eigen::Vector3d centre = view.cam_from_rig * centre_in_rig;
+    if (!(centre.z() > 0.0)) {
+      where.push_back(fmt::format("behind {} (z = {:.4g} mm)", camera.name, centre.z()));
+      continue;
+    }
+    if (centre.z() > 1000.0 * mesh.diameter()) {
+      where.push_back(
+          fmt::format("{:.4g} mm in front of {}, over 1000 object diameters ({:.4g} mm)",
+                      centre.z(), camera.name, mesh.diameter()));
+      continue;
+    }
+    const Eigen::Vector2d pixel = camera.Project(centre);
+    if (pixel.allFinite() && pixel.x() >= -0.5 * camera.width && pixel.x() <= 1.5 * camera.width &&
+        pixel.y() >= -0.5 * camera.height && pixel.y() <= 1.5 * camera.height) {
+      return Status::Ok();
+    }
+    where.push_back(fmt::format("outside {}'s {}x{} image (at {:.4g}, {:.4g} px)", camera.name,
+                                camera.width, camera.height, pixel.x(), pixel.y()));
+  }
+  std::string places;
+  for (const std::string& place : where) places += (places.empty() ? "" : "; ") + place;
+  return Status::InvalidInput(
+      fmt::format("{}/init_pose.txt: the object is not in view at frame 0: its centre is {}",
+                  sequence.dir, places));
+}
+
 // FNV-1a, 64 bit: a stable content hash (not cryptographic; it detects changed inputs).
 class Fnv1a {
  public:
@@ -143,6 +179,7 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence, const Ra
   StatusOr<std::vector<TrackedView>> views = SelectViews(sequence.rig, options.views, &rig_indices);
   if (!views.ok()) return views.status();
   const Mesh& mesh = caster.mesh();
+  BCOT_RETURN_IF_ERROR(CheckInitialPose(sequence, *views, mesh));
   StatusOr<std::unique_ptr<MultiViewTracker>> tracker =
       MultiViewTracker::Create(caster, *views, options.tracker);
   if (!tracker.ok()) return tracker.status();
@@ -232,6 +269,8 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
       LoadSequence(std::filesystem::absolute(sequence_dir).lexically_normal().string(),
                    /*require_init_pose=*/true));
   BCOT_ASSIGN_OR_RETURN(const std::string input_hash, SequenceInputHash(sequence));
+  // The output must be writable before the solve, not after it.
+  BCOT_RETURN_IF_ERROR(CheckWritableDirectory(out_dir));
   // A directory holding DONE is complete; take DONE away before anything in it changes.
   BCOT_RETURN_IF_ERROR(RemoveDoneFile(out_dir));
   BCOT_ASSIGN_OR_RETURN(const Mesh mesh,

@@ -1,6 +1,7 @@
 #include "bcot/core/file_util.h"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -12,8 +13,6 @@
 #include <random>
 #include <sstream>
 #include <system_error>
-
-#include <fmt/format.h>
 
 namespace bcot {
 namespace {
@@ -77,6 +76,19 @@ Status CreateDirectories(const std::string& path) {
   if (!fs::is_directory(path, error)) {
     return Status::IoError(fmt::format("{}: exists but is not a directory", path));
   }
+  return Status::Ok();
+}
+
+Status CheckWritableDirectory(const std::string& dir) {
+  BCOT_RETURN_IF_ERROR(CreateDirectories(dir));
+  const std::string probe = (fs::path(dir) / ".bcot_write_probe").string();
+  const Status written = WriteFileAtomic(probe, "");
+  if (!written.ok()) {
+    return Status::IoError(fmt::format("{}: not writable ({})", dir, written.message()));
+  }
+  std::error_code error;
+  fs::remove(probe, error);
+  if (error) return Status::IoError(fmt::format("{}: cannot remove: {}", probe, error.message()));
   return Status::Ok();
 }
 

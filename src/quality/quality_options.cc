@@ -88,7 +88,7 @@ OptionSchema<QualityOptions>* BuildQualityOptionSchema() {
   s->Add(
        "quality.sample_spacing_px", [](auto& o) -> auto& { return o.sample_spacing_px; }, "px",
        "spacing of the contour samples")
-      .Range(Positive());
+      .Range(Closed(0.05, 1000));
   s->Add(
        "quality.bins_per_channel", [](auto& o) -> auto& { return o.bins_per_channel; }, "",
        "colour histogram bins per channel of the boundary model")

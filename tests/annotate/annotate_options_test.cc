@@ -143,6 +143,12 @@ TEST(AnnotateOptionsTest, WrongTypesAndEnumsAreErrors) {
               HasSubstr("lines.weight = 0, must be > 0 when the sparse energy is used"));
   EXPECT_THAT(ParseText("views:\n  cameras: [a, b]\n  weights: [1]\n").status().message(),
               HasSubstr("weights has 1 entries for 2 cameras"));
+  EXPECT_THAT(ParseText("views:\n  weights: [0, 0]\n").status().message(),
+              HasSubstr("run.yaml:2: views.weights"));
+  EXPECT_THAT(ParseText("views:\n  weights: [0, 0]\n").status().message(),
+              HasSubstr("at least one weight > 0"));
+  EXPECT_THAT(ParseText("region:\n  contour_sample_spacing_px: 1e-9\n").status().message(),
+              HasSubstr("run.yaml:2: region.contour_sample_spacing_px = 1e-09"));
 }
 
 TEST(AnnotateOptionsTest, WindowSectionParsesAndNamesBadValues) {

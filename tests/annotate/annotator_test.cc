@@ -139,6 +139,33 @@ TEST_F(AnnotatorTest, BadInputsAreErrorsNamingTheFile) {
   EXPECT_FALSE(std::filesystem::exists(copy.File("out/DONE")));
 }
 
+// Found before any frame is solved: an output directory that cannot be written, and a frame-0
+// pose that shows the object to no camera (behind the rig, a metre-for-millimetre slip).
+TEST_F(AnnotatorTest, UnwritableOutputAndInvisibleInitialPoseFailBeforeTheSolve) {
+  test::TempDir copy;
+  const std::string seq = copy.File("seq");
+  std::filesystem::copy(SequenceDir(), seq, std::filesystem::copy_options::recursive);
+  test::WriteText(copy.File("file"), "x");
+  const Status unwritable =
+      AnnotateSequenceDir(seq, copy.File("file/out"), AnnotateOptions()).status();
+  EXPECT_EQ(unwritable.code(), StatusCode::kIoError);
+  EXPECT_THAT(unwritable.message(), HasSubstr(copy.File("file")));
+
+  const StatusOr<std::vector<Eigen::Isometry3d>> gt =
+      ReadPoseFile(SequenceDir() + "/gt/rig_from_object.txt");
+  ASSERT_TRUE(gt.ok());
+  for (const double z : {-1e4, 1e9}) {
+    Eigen::Isometry3d pose = (*gt)[0];
+    pose.translation().z() = z;
+    ASSERT_TRUE(WritePoseFile(seq + "/init_pose.txt", {pose}).ok());
+    const Status invisible = AnnotateSequenceDir(seq, copy.File("out"), AnnotateOptions()).status();
+    EXPECT_EQ(invisible.code(), StatusCode::kInvalidInput) << z;
+    EXPECT_THAT(invisible.message(), HasSubstr("init_pose.txt: the object is not in view"));
+    EXPECT_THAT(invisible.message(), HasSubstr("cam0"));
+    EXPECT_FALSE(std::filesystem::exists(copy.File("out/DONE")));
+  }
+}
+
 // The temporal window refines the per-frame poses: both are in the annotation, the window's
 // change per frame is in frames.csv and its options in config.resolved.yaml; off, the final
 // poses are the per-frame ones.

@@ -9,9 +9,13 @@
 // BCOT's annotation. A frame that is "lost" in this mode is not a tracking failure but a
 // disagreement between the image silhouette's best fit and the annotation. --overlay-dir
 // writes the annotation's (green) and the solution's (red) silhouette contours per frame.
+// --edge-offsets instead prints, per frame, the image edges measured along the contour normals
+// of BCOT's annotation (the edge stage's measurement, bcot/optim/edge_lines.h): how many lines
+// found an edge and the mean and median signed offset (px, + = the image edge lies outside the
+// annotation's contour), i.e. how the edge stage would move that pose.
 //
 // Usage: real_bcot_bench --scene DIR --object NAME --model FILE --config FILE [--set k=v]...
-//        [--from-truth] [--overlay-dir DIR] [--threads N]
+//        [--from-truth] [--overlay-dir DIR] [--edge-offsets] [--threads N]
 // TBB (rendering, contours) is limited to --threads (default 1) while timing.
 #include <fmt/format.h>
 #include <tbb/global_control.h>
@@ -32,7 +36,9 @@
 #include "bcot/core/file_util.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/se3.h"
+#include "bcot/optim/edge_lines.h"
 #include "bcot/optim/multi_view_tracker.h"
+#include "bcot/optim/silhouette.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
 
@@ -89,6 +95,9 @@ int main(int argc, char** argv) {
                "Solve every frame from its own annotation (where the image optimum lies)");
   app.add_option("--overlay-dir", overlay_dir,
                  "Write <frame>.png with the annotation (green) and solution (red) contours");
+  bool edge_offsets = false;
+  app.add_flag("--edge-offsets", edge_offsets,
+               "Print the image edges' offsets along the annotation's contour normals");
   int threads = 1;
   app.add_option("--threads", threads, "TBB threads (rendering, contours) while timing")
       ->check(CLI::PositiveNumber);
@@ -127,6 +136,35 @@ int main(int argc, char** argv) {
   Eigen::Isometry3d cam_from_objcentre = (*truth)[0] * template_from_objcentre;
   if (!(*tracker)->Reset({cv::Mat3b(first)}, cam_from_objcentre).ok()) return 1;
 
+  if (edge_offsets) {
+    std::printf(
+        "| frame | lines | found | mean offset (px) | median offset (px) |\n"
+        "|---:|---:|---:|---:|---:|\n");
+    double sum_of_means = 0.0;
+    for (size_t frame = 0; frame < truth->size(); ++frame) {
+      const cv::Mat image = cv::imread(image_path(frame), cv::IMREAD_COLOR);
+      if (image.empty()) return Fail(image_path(frame) + ": cannot read");
+      const Eigen::Isometry3d pose = (*truth)[frame] * template_from_objcentre;
+      const Silhouette silhouette =
+          RenderSilhouette(caster, camera, pose * objcentre_from_template, ContourOptions{});
+      StatusOr<CorrespondenceLines> lines =
+          BuildEdgeLines(caster, camera, Eigen::Isometry3d::Identity(), pose, cv::Mat3b(image),
+                         silhouette, options->tracker.frame.edge.lines);
+      if (!lines.ok()) return Fail(lines.status().message());
+      std::vector<double> offsets;
+      for (const CorrespondenceLine& line : lines->lines) offsets.push_back(line.mean_px);
+      double mean = 0.0;
+      for (double offset : offsets) mean += offset / std::max<size_t>(1, offsets.size());
+      std::sort(offsets.begin(), offsets.end());
+      const double median = offsets.empty() ? 0.0 : offsets[offsets.size() / 2];
+      std::printf("| %zu | %d | %zu | %+.3f | %+.3f |\n", frame, lines->candidates, offsets.size(),
+                  mean, median);
+      sum_of_means += mean;
+    }
+    std::printf("\nmean over frames of the mean signed offset: %+.3f px\n",
+                sum_of_means / truth->size());
+    return 0;
+  }
   std::printf(
       "| frame | rotation error (°) | translation error (mm) | ms |\n|---:|---:|---:|---:|\n");
   int scored = 0;

@@ -112,6 +112,26 @@ TEST(WriteFileAtomicTest, ParentIsAFileIsIoError) {
   EXPECT_THAT(status.message(), HasSubstr(dir.File("file")));
 }
 
+TEST(CheckWritableDirectoryTest, CreatesTheDirectoryAndLeavesNothingBehind) {
+  test::TempDir dir;
+  ASSERT_TRUE(CheckWritableDirectory(dir.File("a/b")).ok());
+  EXPECT_TRUE(fs::is_directory(dir.File("a/b")));
+  EXPECT_THAT(ListNames(dir.File("a/b")), IsEmpty());
+}
+
+TEST(CheckWritableDirectoryTest, UnwritableOrInvalidDirectoryIsIoErrorNamingIt) {
+  test::TempDir dir;
+  test::WriteText(dir.File("file"), "x");
+  const Status under_file = CheckWritableDirectory(dir.File("file/out"));
+  EXPECT_EQ(under_file.code(), StatusCode::kIoError);
+  EXPECT_THAT(under_file.message(), HasSubstr(dir.File("file")));
+  if (fs::is_directory("/proc/self")) {  // /proc accepts no new files, even from root
+    const Status proc = CheckWritableDirectory("/proc/self");
+    EXPECT_EQ(proc.code(), StatusCode::kIoError);
+    EXPECT_THAT(proc.message(), HasSubstr("/proc/self: not writable"));
+  }
+}
+
 TEST(WriteFileAtomicTest, ReadOnlyDirectoryIsIoError) {
   if (::geteuid() == 0) GTEST_SKIP() << "root ignores directory permissions";
   test::TempDir dir;

@@ -19,6 +19,11 @@ Status WriteFileAtomic(const std::string& path, const std::string& content);
 // Creates `path` and its parents (no error if it exists).
 Status CreateDirectories(const std::string& path);
 
+// Creates `dir` (and its parents) if missing and proves that files can be created in it (a
+// probe file is created and removed): an output directory is checked before hours of work are
+// spent on what it will hold. Errors name the directory and the reason.
+Status CheckWritableDirectory(const std::string& dir);
+
 // `relative` resolved against the directory holding `file` (absolute paths pass through).
 std::string ResolveRelativeTo(const std::string& file, const std::string& relative);
 

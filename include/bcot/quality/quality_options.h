@@ -54,7 +54,7 @@ struct QualityOptions {
   // statistic + confidence_z·σ does not, and cannot be told in between (the measurement cannot
   // decide); 0 = compare the statistic alone; >= 0.
   double confidence_z = 2.0;
-  // Spacing of the contour samples (px); > 0.
+  // Spacing of the contour samples (px); in [0.05, 1000].
   double sample_spacing_px = 2.0;
   // Histogram bins per channel of the colour model (must divide 256).
   int bins_per_channel = 16;

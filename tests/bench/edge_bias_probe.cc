@@ -1,0 +1,133 @@
+// Where the edge stage's measurement puts the image edge relative to the true contour (issue
+// 12), run by scripts/bench_edge_bias.sh; not a test.
+//
+// For a sequence with ground truth (`bcot synth` or scripts/pbr_synth.sh), per camera and frame
+// the edge lines of the edge stage (BuildEdgeLines, bcot/optim/edge_lines.h, with the config's
+// `edge:` options) are measured at the ground-truth pose, whose contour is the true silhouette
+// (pbr_gt_check proves it to a few hundredths of a pixel for the Blender renders). A line's μ is
+// then the measurement's own error along the outward normal (+ = the image edge is found
+// outside the true contour). Lines are binned by the direction of their normal in the image:
+// up (n_y < −0.7; the upper rim), down (n_y > 0.7), left, right. A bias of the pose comes from
+// a difference between opposite bins (a shift) or from all bins together (a scale, i.e. depth).
+//
+// Usage: edge_bias_probe --sequence DIR [--config FILE] [--set key=value]... [--frames N]
+// Prints per camera: lines measured / candidates, and per bin count, mean μ and its standard
+// error (px).
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "bcot/annotate/annotate_options.h"
+#include "bcot/core/image_io.h"
+#include "bcot/core/pose_io.h"
+#include "bcot/core/sequence.h"
+#include "bcot/optim/edge_lines.h"
+#include "bcot/optim/silhouette.h"
+#include "bcot/render/mesh.h"
+#include "bcot/render/ray_caster.h"
+
+namespace {
+
+constexpr std::array<const char*, 4> kBins = {"up", "down", "left", "right"};
+
+int BinOf(const Eigen::Vector2d& normal) {
+  if (normal.y() < -0.7) return 0;
+  if (normal.y() > 0.7) return 1;
+  return normal.x() < 0 ? 2 : 3;
+}
+
+struct Accumulator {
+  int count = 0;
+  double sum = 0.0, sum_squares = 0.0;
+  void Add(double value) {
+    ++count;
+    sum += value;
+    sum_squares += value * value;
+  }
+  double Mean() const { return count > 0 ? sum / count : 0.0; }
+  double StandardError() const {
+    if (count < 2) return 0.0;
+    const double variance = (sum_squares - count * Mean() * Mean()) / (count - 1);
+    return std::sqrt(std::max(0.0, variance) / count);
+  }
+};
+
+int Fail(const std::string& message) {
+  std::fprintf(stderr, "edge_bias_probe: %s\n", message.c_str());
+  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace bcot;
+  CLI::App app{"Edge-stage measurement at the ground-truth pose, binned by normal direction"};
+  std::string sequence_dir, config_path;
+  std::vector<std::string> overrides;
+  int max_frames = 0;
+  app.add_option("--sequence", sequence_dir, "Sequence with gt/")->required();
+  app.add_option("--config", config_path, "annotate config (its edge: section is used)");
+  app.add_option("--set", overrides, "Override of the config (repeatable)");
+  app.add_option("--frames", max_frames, "Only the first N frames (0 = all)");
+  CLI11_PARSE(app, argc, argv);
+
+  const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, overrides);
+  if (!options.ok()) return Fail(options.status().message());
+  const StatusOr<Sequence> sequence = LoadSequence(sequence_dir, false);
+  if (!sequence.ok()) return Fail(sequence.status().message());
+  const StatusOr<std::vector<Eigen::Isometry3d>> gt =
+      ReadPoseFile(sequence_dir + "/gt/rig_from_object.txt");
+  if (!gt.ok()) return Fail(gt.status().message());
+  const StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
+  if (!mesh.ok()) return Fail(mesh.status().message());
+  const RayCaster caster(*mesh);
+  const Eigen::Isometry3d template_from_objcentre = mesh->objcentre_from_template().inverse();
+  const EdgeLineOptions& edge = options->tracker.frame.edge.lines;
+  const int frames =
+      max_frames > 0 ? std::min(max_frames, sequence->num_frames) : sequence->num_frames;
+
+  std::printf("%-6s %9s", "camera", "lines");
+  for (const char* bin : kBins) std::printf(" | %-5s %5s %8s %6s", bin, "n", "mean", "se");
+  std::printf(" | %8s\n", "all");
+  std::array<Accumulator, 4> total{};
+  for (int v = 0; v < sequence->rig.size(); ++v) {
+    const RigCamera& camera = sequence->rig[v];
+    std::array<Accumulator, 4> bins{};
+    int candidates = 0, measured = 0;
+    for (int f = 0; f < frames; ++f) {
+      const StatusOr<cv::Mat3b> image = ReadCameraImage(sequence->image_paths[v][f], camera.camera);
+      if (!image.ok()) return Fail(image.status().message());
+      const Eigen::Isometry3d rig_from_objcentre = (*gt)[f] * template_from_objcentre;
+      const Silhouette silhouette =
+          RenderSilhouette(caster, camera.camera, camera.cam_from_rig * (*gt)[f], ContourOptions{});
+      const StatusOr<CorrespondenceLines> lines = BuildEdgeLines(
+          caster, camera.camera, camera.cam_from_rig, rig_from_objcentre, *image, silhouette, edge);
+      if (!lines.ok()) return Fail(lines.status().message());
+      candidates += lines->candidates;
+      for (const CorrespondenceLine& line : lines->lines) {
+        ++measured;
+        bins[BinOf(line.normal)].Add(line.mean_px);
+        total[BinOf(line.normal)].Add(line.mean_px);
+      }
+    }
+    Accumulator all;
+    std::printf("%-6s %4d/%-4d", camera.camera.name.c_str(), measured, candidates);
+    for (const Accumulator& bin : bins) {
+      std::printf(" | %-5s %5d %+8.3f %6.3f", "", bin.count, bin.Mean(), bin.StandardError());
+      all.count += bin.count;
+      all.sum += bin.sum;
+    }
+    std::printf(" | %+8.3f\n", all.Mean());
+  }
+  std::printf("%-6s %9s", "all", "");
+  for (const Accumulator& bin : total) {
+    std::printf(" | %-5s %5d %+8.3f %6.3f", "", bin.count, bin.Mean(), bin.StandardError());
+  }
+  std::printf("\n");
+  return 0;
+}
