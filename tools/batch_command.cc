@@ -1,13 +1,17 @@
 // bcot batch <root> --out DIR [--config FILE] [--set section.key=value]... [--jobs N]
-//            [--shard k/N] [--force]
+//            [--shard k/N] [--force] [--in-process]
 // Annotates every sequence under <root> (see bcot/annotate/batch.h) with a live progress line on
-// stderr; exit 0 when every sequence succeeded, 1 when any failed, 2 for usage/config errors.
+// stderr, each sequence in its own `bcot annotate` process (child_process_runner.h) unless
+// --in-process; exit 0 when every sequence succeeded, 1 when any failed, 2 for usage/config
+// errors.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "bcot/annotate/annotate_options.h"
 #include "bcot/annotate/batch.h"
+#include "bcot/annotate/child_process_runner.h"
 #include "commands.h"
 
 namespace bcot::tools {
@@ -21,6 +25,7 @@ struct BatchFlags {
   std::string shard = "0/1";
   bool force = false;
   bool quiet = false;
+  bool in_process = false;
 };
 
 void PrintProgress(const BatchProgress& p) {
@@ -45,6 +50,16 @@ int RunBatchCommand(const BatchFlags& flags) {
   options.annotate = *annotate;
   options.jobs = flags.jobs;
   options.force = flags.force;
+  if (!flags.in_process) {
+    std::error_code error;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (error) {
+      PrintError("batch", "cannot find the bcot executable (/proc/self/exe: " + error.message() +
+                              "); use --in-process");
+      return 1;
+    }
+    options.runner = MakeChildProcessRunner(self.string());
+  }
   const Status shard = ParseShard(flags.shard, &options);
   if (!shard.ok()) {
     PrintError("batch", shard.message());
@@ -100,6 +115,9 @@ void AddBatchCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   command->add_flag("--force", flags->force, "Redo sequences whose DONE matches");
   command->add_flag("--quiet", flags->quiet, "No progress on stderr");
+  command->add_flag("--in-process", flags->in_process,
+                    "Annotate in this process (default: one child process per sequence, so a "
+                    "crash fails only that sequence)");
   command->callback([flags, exit_code] { *exit_code = RunBatchCommand(*flags); });
 }
 

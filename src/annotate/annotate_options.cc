@@ -195,6 +195,23 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        [](auto& o) -> auto& { return o.tracker.frame.edge.lines.min_sigma_px; }, "px",
        "floor of an edge line's standard deviation")
       .Range(Positive());
+  s->Add(
+       "edge.window_px", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.window_px; },
+       "px", "half-length of the profile sampled along each line")
+      .Range(Closed(2, 50));
+  s->Add(
+       "edge.fit_half_px", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.fit_half_px; },
+       "px", "half-width of the blurred-step fit around the steepest point")
+      .Check([](const AnnotateOptions& o) {
+        const EdgeLineOptions& lines = o.tracker.frame.edge.lines;
+        return lines.fit_half_px > lines.step_px && lines.fit_half_px <= lines.window_px
+                   ? ""
+                   : "must be in (0.25, edge.window_px]";
+      });
+  s->Add(
+       "edge.min_snr", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.min_snr; }, "",
+       "smallest step in units of the profile fit's residual standard deviation")
+      .Range(NonNegative());
 }
 
 void DeclareColorAndTracker(OptionSchema<AnnotateOptions>* s) {

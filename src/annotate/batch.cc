@@ -324,8 +324,10 @@ StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_d
             RemoveStaleTempFiles(job.annotation_dir, /*recursive=*/true);
             StatusOr<AnnotationOutcome> outcome = Status::Internal("not run");
             try {
-              outcome = AnnotateSequenceDir(job.sequence_dir, job.annotation_dir, options.annotate,
-                                            on_frame);
+              outcome = options.runner ? options.runner(job.sequence_dir, job.annotation_dir,
+                                                        options.annotate, on_frame)
+                                       : AnnotateSequenceDir(job.sequence_dir, job.annotation_dir,
+                                                             options.annotate, on_frame);
             } catch (const std::exception& exception) {
               outcome = Status::Internal(fmt::format("unexpected exception: {}", exception.what()));
             }

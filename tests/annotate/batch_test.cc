@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "bcot/annotate/child_process_runner.h"
 #include "bcot/core/file_util.h"
 #include "test_util.h"
 
@@ -176,6 +177,50 @@ TEST_F(BatchRunTest, FailureIsRecordedAndOthersFinishThenRerunSkipsOrRedoes) {
   const StatusOr<BatchResult> fourth = RunBatch(root, out, changed);
   EXPECT_EQ(fourth->sequences[1].outcome, BatchOutcome::kSkipped);
   EXPECT_EQ(fourth->sequences[2].outcome, BatchOutcome::kAnnotated);
+}
+
+// One process per sequence: a sequence whose process crashes (here a stand-in executable that
+// kills itself with SIGSEGV for it and runs bcot for the others) is recorded as failed with the
+// signal, a bad input with bcot's own message, and the rest is annotated as in-process, with
+// the same DONE so that a rerun in either mode skips them.
+TEST_F(BatchRunTest, ChildProcessesIsolateACrashingSequence) {
+  test::TempDir work;
+  const std::string root = CopyCorpus(work, /*with_broken=*/true);
+  fs::copy(dir_->File("lab/s1"), root + "/poison", fs::copy_options::recursive);
+  const std::string wrapper = work.File("bcot_or_crash.sh");
+  test::WriteText(wrapper,
+                  "#!/bin/sh\ncase \"$2\" in\n  */poison) echo 'bcot annotate: frame 1/3'; "
+                  "kill -SEGV $$ ;;\nesac\nexec " +
+                      test::BcotBinary() + " \"$@\"\n");
+  fs::permissions(wrapper, fs::perms::owner_all);
+  BatchOptions options = TrackOptions();
+  options.runner = MakeChildProcessRunner(wrapper);
+  const std::string out = work.File("out");
+  const StatusOr<BatchResult> result = RunBatch(root, out, options);
+  ASSERT_TRUE(result.ok()) << result.status().message();
+  ASSERT_EQ(result->sequences.size(), 4u);  // broken, lab/s1, lab/s2, poison
+  EXPECT_EQ(result->sequences[0].outcome, BatchOutcome::kFailed);
+  EXPECT_THAT(result->sequences[0].error, HasSubstr("init_pose.txt"));
+  EXPECT_EQ(result->sequences[0].error.find("bcot annotate: error"), std::string::npos);
+  for (int i : {1, 2}) {
+    EXPECT_EQ(result->sequences[i].outcome, BatchOutcome::kAnnotated) << result->sequences[i].error;
+    EXPECT_EQ(result->sequences[i].frames, 3);
+    EXPECT_TRUE(fs::exists(out + "/" + result->sequences[i].relative_path + "/DONE"));
+    EXPECT_FALSE(
+        fs::exists(out + "/" + result->sequences[i].relative_path + "/.batch_config.yaml"));
+  }
+  EXPECT_EQ(result->sequences[3].relative_path, "poison");
+  EXPECT_EQ(result->sequences[3].outcome, BatchOutcome::kFailed);
+  EXPECT_THAT(result->sequences[3].error, HasSubstr("killed by signal 11"));
+  EXPECT_FALSE(fs::exists(out + "/poison/DONE"));
+  const nlohmann::json summary = nlohmann::json::parse(*ReadTextFile(out + "/summary.json"));
+  EXPECT_EQ(summary["failed"], 2);
+
+  // The children wrote the DONE this process would have: an in-process rerun skips them.
+  const StatusOr<BatchResult> again = RunBatch(root, out, TrackOptions());
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(again->sequences[1].outcome, BatchOutcome::kSkipped);
+  EXPECT_EQ(again->sequences[2].outcome, BatchOutcome::kSkipped);
 }
 
 TEST_F(BatchRunTest, ShardsOfARunCoverTheCorpusOnce) {

@@ -12,10 +12,11 @@
 //
 // Usage: edge_bias_probe --sequence DIR [--config FILE] [--set key=value]... [--frames N]
 // Prints per camera: lines measured / candidates, and per bin count, mean μ and its standard
-// error (px).
+// error (px); then the quantiles of μ per bin over all cameras.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -44,10 +45,18 @@ int BinOf(const Eigen::Vector2d& normal) {
 struct Accumulator {
   int count = 0;
   double sum = 0.0, sum_squares = 0.0;
+  std::vector<double> values;
   void Add(double value) {
     ++count;
     sum += value;
     sum_squares += value * value;
+    values.push_back(value);
+  }
+  double Quantile(double q) const {
+    if (values.empty()) return 0.0;
+    std::vector<double> sorted = values;
+    std::sort(sorted.begin(), sorted.end());
+    return sorted[static_cast<size_t>(q * (sorted.size() - 1))];
   }
   double Mean() const { return count > 0 ? sum / count : 0.0; }
   double StandardError() const {
@@ -128,6 +137,11 @@ int main(int argc, char** argv) {
   for (const Accumulator& bin : total) {
     std::printf(" | %-5s %5d %+8.3f %6.3f", "", bin.count, bin.Mean(), bin.StandardError());
   }
-  std::printf("\n");
+  std::printf("\nquantiles of μ over all cameras (10 / 25 / 50 / 75 / 90 %%):\n");
+  for (size_t b = 0; b < kBins.size(); ++b) {
+    std::printf("  %-5s", kBins[b]);
+    for (double q : {0.1, 0.25, 0.5, 0.75, 0.9}) std::printf(" %+7.3f", total[b].Quantile(q));
+    std::printf("\n");
+  }
   return 0;
 }

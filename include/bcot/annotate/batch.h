@@ -28,9 +28,17 @@
 #include <vector>
 
 #include "bcot/annotate/annotate_options.h"
+#include "bcot/annotate/annotator.h"
 #include "bcot/core/status.h"
 
 namespace bcot {
+
+// Annotates one sequence of a batch into its annotation directory (the contract of
+// AnnotateSequenceDir: DONE last, nothing left half-written). May be called from several
+// threads at once.
+using SequenceRunner = std::function<StatusOr<AnnotationOutcome>(
+    const std::string& sequence_dir, const std::string& annotation_dir,
+    const AnnotateOptions& options, const AnnotateProgress& progress)>;
 
 struct BatchOptions {
   AnnotateOptions annotate;
@@ -41,6 +49,10 @@ struct BatchOptions {
   int shard_count = 1;
   // Redo every sequence, even those whose DONE matches.
   bool force = false;
+  // How a sequence is annotated; empty = AnnotateSequenceDir in this process. `bcot batch`
+  // uses MakeChildProcessRunner (bcot/annotate/child_process_runner.h): one process per
+  // sequence, so a crash is that sequence's failure only.
+  SequenceRunner runner;
   Status Validate() const;
 };
 
