@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <utility>
+#include <vector>
 
 #include "bcot/core/file_util.h"
 
@@ -20,6 +22,39 @@ bool HasMark(const YAML::Node& node) {
   } catch (const YAML::Exception&) {
     return false;
   }
+}
+
+// Aliases make a YAML document a graph that every reader walks as a tree: ten nested aliases
+// of ten entries each ("billion laughs") expand to 10^10 nodes. No file bcot reads is anywhere
+// near these limits, so a document past them is refused before anything walks it.
+constexpr size_t kMaxYamlNodes = 100000;
+constexpr int kMaxYamlDepth = 64;
+
+Status CheckYamlSize(const YAML::Node& root, const std::string& source_name, StatusCode code) {
+  std::vector<std::pair<YAML::Node, int>> stack = {{root, 0}};
+  size_t visited = 0;
+  while (!stack.empty()) {
+    const auto [node, depth] = stack.back();
+    stack.pop_back();
+    if (++visited > kMaxYamlNodes) {
+      return Status(code, fmt::format("{}: more than {} YAML nodes (with aliases expanded); not "
+                                      "a bcot file",
+                                      source_name, kMaxYamlNodes));
+    }
+    if (depth > kMaxYamlDepth) {
+      return Status(code, fmt::format("{}: YAML nested deeper than {} levels; not a bcot file",
+                                      YamlWhere(source_name, node), kMaxYamlDepth));
+    }
+    if (node.IsSequence()) {
+      for (const YAML::Node& element : node) stack.push_back({element, depth + 1});
+    } else if (node.IsMap()) {
+      for (const auto& entry : node) {
+        stack.push_back({entry.first, depth + 1});
+        stack.push_back({entry.second, depth + 1});
+      }
+    }
+  }
+  return Status::Ok();
 }
 
 // 1-based line of a map entry, 0 when unknown. The key's line rather than the value's: a block
@@ -227,6 +262,8 @@ Status ApplyOneOverride(const std::string& override_text, YAML::Node* root) {
   try {
     std::vector<YAML::Node> documents = YAML::LoadAll(value_text);
     if (documents.size() != 1) return fail("value must be a single YAML value");
+    const Status size = CheckYamlSize(documents[0], "value", StatusCode::kInvalidConfig);
+    if (!size.ok()) return fail(size.message());
     value = WithoutMarks(documents[0]);
   } catch (const YAML::Exception& error) {
     return fail(fmt::format("value '{}' is not valid YAML: {}", value_text, error.msg));
@@ -268,6 +305,7 @@ StatusOr<YAML::Node> ParseYaml(const std::string& text, const std::string& sourc
       return Status(code, fmt::format("{}: {} YAML documents ('---'), expected one",
                                       YamlWhere(source_name, documents[1]), documents.size()));
     }
+    BCOT_RETURN_IF_ERROR(CheckYamlSize(documents[0], source_name, code));
     return documents[0];
   } catch (const YAML::Exception& error) {
     const std::string where =

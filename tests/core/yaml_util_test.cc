@@ -1,5 +1,6 @@
 #include "bcot/core/yaml_util.h"
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -55,6 +56,27 @@ TEST(ParseYamlTest, SeveralDocumentsAreAnError) {
   ASSERT_FALSE(node.ok());
   EXPECT_THAT(node.status().message(),
               AllOf(StartsWith("cfg.yaml:3: "), HasSubstr("2 YAML documents")));
+}
+
+// Nested aliases ("billion laughs") and deep nesting are refused before any reader walks them.
+TEST(ParseYamlTest, AliasBombsAndDeepNestingAreErrors) {
+  std::string bomb = "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int i = 1; i <= 9; ++i) {
+    bomb += fmt::format(
+        "a{0}: &a{0} [*a{1}, *a{1}, *a{1}, *a{1}, *a{1}, *a{1}, *a{1}, *a{1}, "
+        "*a{1}, *a{1}]\n",
+        i, i - 1);
+  }
+  const StatusOr<YAML::Node> exploded = ParseYaml(bomb, "cfg.yaml");
+  ASSERT_FALSE(exploded.ok());
+  EXPECT_EQ(exploded.status().code(), StatusCode::kInvalidInput);
+  EXPECT_THAT(exploded.status().message(), HasSubstr("cfg.yaml: more than 100000 YAML nodes"));
+  const std::string deep = std::string(80, '[') + std::string(80, ']');
+  const StatusOr<YAML::Node> nested = ParseYaml(deep, "cfg.yaml");
+  ASSERT_FALSE(nested.ok());
+  EXPECT_THAT(nested.status().message(), HasSubstr("nested deeper than 64 levels"));
+  // An alias used a few times is fine.
+  EXPECT_TRUE(ParseYaml("a: &k [1, 2]\nb: *k\nc: *k\n", "cfg.yaml").ok());
 }
 
 TEST(ParseYamlTest, EmptyTextIsNull) {

@@ -28,7 +28,9 @@ inline constexpr const char kCommandLineSource[] = "--set";
 std::string JoinWhere(const std::string& location, const std::string& key_path);
 
 // Parses YAML text; a syntax error names source:line. More than one document is an error;
-// an empty text gives a Null node. `code` is the StatusCode of syntax errors.
+// an empty text gives a Null node; so is a document of more than 100,000 nodes (counting
+// aliases as often as they are used) or nested deeper than 64 levels. `code` is the StatusCode
+// of these errors.
 StatusOr<YAML::Node> ParseYaml(const std::string& text, const std::string& source_name,
                                StatusCode code = StatusCode::kInvalidInput);
 // Reads and parses a file (NotFound / IoError when it cannot be read).
