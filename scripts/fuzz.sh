@@ -5,7 +5,7 @@
 #   scripts/fuzz.sh [SECONDS] [ctest args instead of the default -L '^fuzz$', e.g. -R mesh or
 #                   -L fuzz_yaml for the YAML parsers (see tests/fuzz/CMakeLists.txt)]
 # Prints the executions per target; a crash fails and leaves its input in
-# build-fuzz/tests/fuzz/work/<target>/crash-*, which then belongs in the corpus and a
+# build-fuzz/tests/fuzz/runs/<target>/crash-*, which then belongs in the corpus and a
 # regression test. Needs clang and libclang-rt-14-dev (scripts/setup.sh installs them).
 set -euo pipefail
 cd "$(dirname "$0")/.."

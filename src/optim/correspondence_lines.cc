@@ -187,6 +187,18 @@ bool ContourDistribution(const std::vector<double>& p_foreground, double first_o
                                       sigma_px);
 }
 
+bool AnchorLine(const ContourPoint& point, const Camera& camera,
+                const Eigen::Isometry3d& objcentre_from_template,
+                const Eigen::Isometry3d& cam_from_objcentre, CorrespondenceLine* line) {
+  line->centre = point.pixel;
+  line->normal = point.normal;
+  line->point_in_objcentre = objcentre_from_template * point.point_in_object;
+  const Eigen::Vector3d point_in_cam = cam_from_objcentre * line->point_in_objcentre;
+  if (!(point_in_cam.z() > 0.0)) return false;
+  line->projection0 = camera.Project(point_in_cam);
+  return true;
+}
+
 StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
     const RayCaster& caster, const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
     const Eigen::Isometry3d& rig_from_objcentre, const cv::Mat3b& image,
@@ -210,9 +222,7 @@ StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
   std::vector<Eigen::Vector2i> queries;
   std::vector<Eigen::Vector2d> query_points;  // the sub-points, 4 queries each
   for (int j = 0; j < num_candidates; ++j) {
-    // Contour samples are evenly spaced along every contour: evenly spaced indices are evenly
-    // spaced in arc length.
-    const ContourPoint& point = contour[static_cast<size_t>((j + 0.5) * count / num_candidates)];
+    const ContourPoint& point = contour[LineSampleIndex(j, count, num_candidates)];
     ++result.candidates;
     if (!camera.InImage(point.pixel)) {
       ++result.rejected_off_image;
@@ -227,15 +237,10 @@ StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
       continue;
     }
     PendingLine p;
-    p.line.centre = point.pixel;
-    p.line.normal = point.normal;
-    p.line.point_in_objcentre = objcentre_from_template * point.point_in_object;
-    const Eigen::Vector3d point_in_cam = cam_from_objcentre * p.line.point_in_objcentre;
-    if (!(point_in_cam.z() > 0.0)) {
+    if (!AnchorLine(point, camera, objcentre_from_template, cam_from_objcentre, &p.line)) {
       ++result.rejected_off_image;
       continue;
     }
-    p.line.projection0 = camera.Project(point_in_cam);
     p.first_sample = -static_cast<int>(std::floor((inside_px - 0.5 * h) / h));
     const int last_sample = static_cast<int>(std::floor((outside_px - 0.5 * h) / h));
     p.num_samples = last_sample - p.first_sample + 1;

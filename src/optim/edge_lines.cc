@@ -233,7 +233,7 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
   const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
   const cv::Mat1b& mask = silhouette.mask;
   for (int j = 0; j < num_candidates; ++j) {
-    const ContourPoint& point = contour[static_cast<size_t>((j + 0.5) * count / num_candidates)];
+    const ContourPoint& point = contour[LineSampleIndex(j, count, num_candidates)];
     ++result.candidates;
     const Eigen::Vector2d first = point.pixel - half * h * point.normal;
     const Eigen::Vector2d last = point.pixel + half * h * point.normal;
@@ -256,15 +256,10 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
       continue;
     }
     CorrespondenceLine line;
-    line.centre = point.pixel;
-    line.normal = point.normal;
-    line.point_in_objcentre = objcentre_from_template * point.point_in_object;
-    const Eigen::Vector3d point_in_cam = cam_from_objcentre * line.point_in_objcentre;
-    if (!(point_in_cam.z() > 0.0)) {
+    if (!AnchorLine(point, camera, objcentre_from_template, cam_from_objcentre, &line)) {
       ++result.rejected_off_image;
       continue;
     }
-    line.projection0 = camera.Project(point_in_cam);
     EdgeFit fit;
     if (FitEdgeAcross(image, point.pixel, point.normal, options, &fit) != EdgeAcross::kFound) {
       ++result.rejected_ambiguous;  // off-image windows were rejected above

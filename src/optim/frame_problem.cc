@@ -114,6 +114,19 @@ const char* FrameTerminationName(FrameTermination termination) {
 
 namespace {
 
+// One Ceres solve of a 6-dof pose problem (the region rounds and the edge stage): dense normal
+// Cholesky, silent.
+ceres::Solver::Summary SolvePose(int max_iterations, int num_threads, ceres::Problem* problem) {
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  solver_options.max_num_iterations = max_iterations;
+  solver_options.num_threads = num_threads;
+  solver_options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options, problem, &summary);
+  return summary;
+}
+
 // The template and cost options of pyramid level `level` (scale 2^level, see the header).
 struct LevelOptions {
   RegionTemplateOptions region;
@@ -325,13 +338,8 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
     AddDamping(options_, templates, linearisation_pose, x.data(), &problem);
     problem.SetManifold(x.data(), new Se3Manifold());
 
-    ceres::Solver::Options solver_options;
-    solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-    solver_options.max_num_iterations = options_.iterations;
-    solver_options.num_threads = options_.num_threads;
-    solver_options.logging_type = ceres::SILENT;
-    ceres::Solver::Summary ceres_summary;
-    ceres::Solve(solver_options, &problem, &ceres_summary);
+    const ceres::Solver::Summary ceres_summary =
+        SolvePose(options_.iterations, options_.num_threads, &problem);
     summary.iterations += static_cast<int>(ceres_summary.iterations.size()) - 1;
     if (!ceres_summary.IsSolutionUsable()) {
       return fail(FrameTermination::kSolverFailure, where + ": " + ceres_summary.message);
@@ -417,13 +425,8 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
     }
     if (total_lines < edge.min_lines) return false;
     problem.SetManifold(parameters, new Se3Manifold());
-    ceres::Solver::Options solver_options;
-    solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-    solver_options.max_num_iterations = edge.iterations;
-    solver_options.num_threads = options_.num_threads;
-    solver_options.logging_type = ceres::SILENT;
-    ceres::Solver::Summary ceres_summary;
-    ceres::Solve(solver_options, &problem, &ceres_summary);
+    const ceres::Solver::Summary ceres_summary =
+        SolvePose(edge.iterations, options_.num_threads, &problem);
     summary->iterations += static_cast<int>(ceres_summary.iterations.size()) - 1;
     if (!ceres_summary.IsSolutionUsable()) return false;
     for (FrameViewSummary& view_summary : summary->views) view_summary.edge_lines = 0;

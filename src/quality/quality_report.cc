@@ -34,6 +34,13 @@ StatusOr<std::vector<int>> ViewIndices(const Rig& rig, const std::vector<std::st
   return indices;
 }
 
+// A frame-view has a measurement when its statistic exists and enough contour points found a
+// usable boundary (see "unverifiable" in the header).
+bool IsMeasured(const ViewFrameQuality& quality, const QualityOptions& options) {
+  return std::isfinite(quality.Statistic(options.statistic)) &&
+         quality.found >= options.min_found_fraction * quality.points;
+}
+
 // Measures one frame-view.
 StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& camera,
                                        const Eigen::Isometry3d& cam_from_object,
@@ -122,8 +129,7 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
   const double margin =
       options.confidence_z *
       (std::isfinite(quality.statistic_sigma_px) ? quality.statistic_sigma_px : 0.0);
-  const bool measurable =
-      std::isfinite(statistic) && quality.found >= options.min_found_fraction * quality.points;
+  const bool measurable = IsMeasured(quality, options);
   quality.bad = measurable && statistic - margin > options.threshold_px;
   quality.verifiable = measurable && (quality.bad || statistic + margin <= options.threshold_px);
   return quality;
@@ -145,10 +151,10 @@ void Summarize(QualityReport* report) {
       medians.push_back(q.median_px);
       if (!q.verifiable) ++summary.unverified_frames;
       // Frames without a measurement rank first among the worst (they need a look).
-      const double statistic = q.Statistic(options.statistic);
-      if (!std::isfinite(statistic) || q.found < options.min_found_fraction * q.points) {
+      if (!IsMeasured(q, options)) {
         ranked.push_back({std::numeric_limits<double>::infinity(), f});
       } else {
+        const double statistic = q.Statistic(options.statistic);
         ranked.push_back({statistic, f});
         summary.worst_px = std::max(summary.worst_px, statistic);
       }

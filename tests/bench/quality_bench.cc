@@ -108,33 +108,27 @@ void PrintCorrelation(const std::string& label, const Rows& rows) {
 }
 
 // `sequence` and `gt` hold the same frames; `rig_from_object` has at least as many poses.
-int Run(const Sequence& sequence_in, const std::vector<Eigen::Isometry3d>& gt_in,
+// `caster` holds the sequence's mesh.
+int Run(const Sequence& sequence, const RayCaster& caster, const std::vector<Eigen::Isometry3d>& gt,
         const std::string& label, std::vector<Eigen::Isometry3d> rig_from_object,
         const QualityOptions& options, Rows* rows) {
   Rows mine;
-  const Sequence* sequence = &sequence_in;
-  const std::vector<Eigen::Isometry3d>* gt = &gt_in;
-  rig_from_object.resize(gt->size());
-  const StatusOr<QualityReport> report = MeasureQuality(*sequence, rig_from_object, {}, options);
+  rig_from_object.resize(gt.size());
+  const StatusOr<QualityReport> report =
+      MeasureQuality(sequence, caster, rig_from_object, {}, options);
   if (!report.ok()) {
     std::fprintf(stderr, "quality_bench: %s\n", report.status().message().c_str());
     return 1;
   }
-  const StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
-  if (!mesh.ok()) {
-    std::fprintf(stderr, "quality_bench: %s\n", mesh.status().message().c_str());
-    return 1;
-  }
-  const RayCaster caster(*mesh);
   ContourOptions dense;
   dense.sample_spacing_px = 0.5;
   ContourOptions sparse;
   sparse.sample_spacing_px = options.sample_spacing_px;
-  for (int f = 0; f < sequence->num_frames; ++f) {
-    for (int v = 0; v < sequence->rig.size(); ++v) {
-      const RigCamera& camera = sequence->rig[v];
+  for (int f = 0; f < sequence.num_frames; ++f) {
+    for (int v = 0; v < sequence.rig.size(); ++v) {
+      const RigCamera& camera = sequence.rig[v];
       const std::vector<ContourPoint> truth =
-          caster.ExtractContour(camera.camera, camera.cam_from_rig * (*gt)[f], dense);
+          caster.ExtractContour(camera.camera, camera.cam_from_rig * gt[f], dense);
       const std::vector<ContourPoint> posed =
           caster.ExtractContour(camera.camera, camera.cam_from_rig * rig_from_object[f], sparse);
       std::vector<double> distances;
@@ -213,11 +207,17 @@ int main(int argc, char** argv) {
     if (!sequence->timestamps_ns.empty()) sequence->timestamps_ns.resize(max_frames);
   }
   gt->resize(sequence->num_frames);
+  const StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
+  if (!mesh.ok()) {
+    std::fprintf(stderr, "quality_bench: %s\n", mesh.status().message().c_str());
+    return 1;
+  }
+  const RayCaster caster(*mesh);
   std::printf("%-10s %5s %-6s %10s %10s %10s %10s %8s %9s\n", "poses", "frame", "view", "meas_p90",
               "true_p90", "meas_med", "true_med", "sigma", "found");
   Rows rows;
   auto run = [&](const std::string& label, const std::vector<Eigen::Isometry3d>& poses) {
-    return Run(*sequence, *gt, label, poses, options->quality, &rows);
+    return Run(*sequence, caster, *gt, label, poses, options->quality, &rows);
   };
   if (!poses_path.empty()) {
     const StatusOr<std::vector<Eigen::Isometry3d>> poses = ReadPoseFile(poses_path);
@@ -263,33 +263,28 @@ int main(int argc, char** argv) {
     }
     if (run(fmt::format("gt+{}px", shift), poses) != 0) return 1;
   }
-  if (!rotations_px.empty()) {
-    const StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
-    if (!mesh.ok()) return 1;
-    const RayCaster caster(*mesh);
-    for (const double move : rotations_px) {
-      std::vector<Eigen::Isometry3d> poses = *gt;
-      for (Eigen::Isometry3d& rig_from_object : poses) {
-        // Farthest contour point from the projected object centre in cam0 (px).
-        const Eigen::Isometry3d cam_from_object = cam0.cam_from_rig * rig_from_object;
-        const Eigen::Vector3d centre_in_cam = cam_from_object * mesh->bbox_center();
-        const Eigen::Vector2d centre = cam0.camera.Project(centre_in_cam);
-        double radius = 0.0;
-        for (const ContourPoint& point : caster.ExtractContour(cam0.camera, cam_from_object)) {
-          radius = std::max(radius, (point.pixel - centre).norm());
-        }
-        if (radius <= 0.0) continue;
-        // Rotation about cam0's optical axis through the object centre, in rig coordinates.
-        const Eigen::Vector3d axis =
-            cam0.cam_from_rig.linear().transpose() * Eigen::Vector3d::UnitZ();
-        const Eigen::Vector3d pivot = rig_from_object * mesh->bbox_center();
-        const Eigen::Isometry3d rotate = Eigen::Translation3d(pivot) *
-                                         Eigen::AngleAxisd(move / radius, axis) *
-                                         Eigen::Translation3d(-pivot);
-        rig_from_object = rotate * rig_from_object;
+  for (const double move : rotations_px) {
+    std::vector<Eigen::Isometry3d> poses = *gt;
+    for (Eigen::Isometry3d& rig_from_object : poses) {
+      // Farthest contour point from the projected object centre in cam0 (px).
+      const Eigen::Isometry3d cam_from_object = cam0.cam_from_rig * rig_from_object;
+      const Eigen::Vector3d centre_in_cam = cam_from_object * mesh->bbox_center();
+      const Eigen::Vector2d centre = cam0.camera.Project(centre_in_cam);
+      double radius = 0.0;
+      for (const ContourPoint& point : caster.ExtractContour(cam0.camera, cam_from_object)) {
+        radius = std::max(radius, (point.pixel - centre).norm());
       }
-      if (run(fmt::format("gt~rot{}px", move), poses) != 0) return 1;
+      if (radius <= 0.0) continue;
+      // Rotation about cam0's optical axis through the object centre, in rig coordinates.
+      const Eigen::Vector3d axis =
+          cam0.cam_from_rig.linear().transpose() * Eigen::Vector3d::UnitZ();
+      const Eigen::Vector3d pivot = rig_from_object * mesh->bbox_center();
+      const Eigen::Isometry3d rotate = Eigen::Translation3d(pivot) *
+                                       Eigen::AngleAxisd(move / radius, axis) *
+                                       Eigen::Translation3d(-pivot);
+      rig_from_object = rotate * rig_from_object;
     }
+    if (run(fmt::format("gt~rot{}px", move), poses) != 0) return 1;
   }
   PrintCorrelation("all", rows);
   return 0;

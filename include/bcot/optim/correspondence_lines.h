@@ -97,6 +97,18 @@ struct CorrespondenceLines {
   int rejected_ambiguous = 0;
 };
 
+// Shared by the builders of lines (this file's and edge_lines.h's): the contour sample of the
+// j-th of `num_lines` lines spread evenly over `count` samples (evenly spaced indices are
+// evenly spaced in arc length), and the line anchored at a contour point at T0 (centre,
+// normal, model point in the object-centred frame and its projection); false when that point
+// is not in front of the camera.
+inline size_t LineSampleIndex(int j, int count, int num_lines) {
+  return static_cast<size_t>((j + 0.5) * count / num_lines);
+}
+bool AnchorLine(const ContourPoint& point, const Camera& camera,
+                const Eigen::Isometry3d& objcentre_from_template,
+                const Eigen::Isometry3d& cam_from_objcentre, CorrespondenceLine* line);
+
 // Builds the lines of one view at T0. `silhouette` must be RenderSilhouette at
 // cam_from_rig · T0 · objcentre_from_template. Errors (kInvalidConfig / kInvalidInput):
 // invalid options, image size different from the camera's, silhouette mask of another size.
