@@ -115,6 +115,7 @@ std::string FramesCsv(const SequenceAnnotation& annotation) {
   std::string csv = "frame,termination,rounds,iterations,initial_energy,final_energy";
   for (const std::string& name : annotation.view_names) csv += ",energy_" + name;
   for (const std::string& name : annotation.view_names) csv += ",pixels_" + name;
+  for (const std::string& name : annotation.view_names) csv += ",edge_lines_" + name;
   csv += ",milliseconds,window_rotation_deg,window_translation_mm\n";
   for (size_t f = 0; f < annotation.frames.size(); ++f) {
     const AnnotatedFrame& frame = annotation.frames[f];
@@ -123,6 +124,7 @@ std::string FramesCsv(const SequenceAnnotation& annotation) {
                        s.rounds, s.iterations, s.initial_energy, s.final_energy);
     for (const FrameViewSummary& view : s.views) csv += fmt::format(",{:.6g}", view.energy);
     for (const FrameViewSummary& view : s.views) csv += fmt::format(",{}", view.pixels);
+    for (const FrameViewSummary& view : s.views) csv += fmt::format(",{}", view.edge_lines);
     csv += fmt::format(",{:.1f},{:.6g},{:.6g}\n", frame.milliseconds, frame.window_rotation_deg,
                        frame.window_translation_mm);
   }

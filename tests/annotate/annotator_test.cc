@@ -201,6 +201,7 @@ TEST_F(AnnotatorTest, WindowRefinesThePerFramePosesAndIsRecorded) {
   const StatusOr<std::string> csv = ReadTextFile(out.File("frames.csv"));
   ASSERT_TRUE(csv.ok());
   EXPECT_THAT(*csv, HasSubstr(",milliseconds,window_rotation_deg,window_translation_mm\n"));
+  EXPECT_THAT(*csv, HasSubstr(",edge_lines_"));
   const StatusOr<std::string> config = ReadTextFile(out.File("config.resolved.yaml"));
   ASSERT_TRUE(config.ok());
   EXPECT_THAT(*config, HasSubstr("window:\n  enabled: true\n  size: 0\n"));
