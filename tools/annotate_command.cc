@@ -61,7 +61,7 @@ int RunAnnotate(const AnnotateFlags& flags) {
                                  : fmt::format(" (worst {:.2f} px)", verdict.worst_px);
   std::fprintf(stderr, "bcot annotate: quality %s%s; see %s/report.html\n",
                verdict.accepted ? "accepted" : "rejected", detail.c_str(), flags.out_dir.c_str());
-  return 0;
+  return verdict.accepted ? 0 : kExitRejected;
 }
 
 }  // namespace

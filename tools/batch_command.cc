@@ -94,7 +94,7 @@ int RunBatchCommand(const BatchFlags& flags) {
                "bcot batch: %d annotated, %d skipped, %d failed; %d accepted, %d rejected; "
                "summary: %s/summary.html\n",
                annotated, skipped, result->num_failed(), accepted, rejected, flags.out_dir.c_str());
-  return result->all_succeeded() ? 0 : 1;
+  return result->ExitCode();
 }
 
 }  // namespace

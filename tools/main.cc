@@ -3,6 +3,8 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 
@@ -27,6 +29,64 @@ void PrintError(const std::string& command, const std::string& message) {
   std::fprintf(stderr, "bcot %s: error: %s\n", command.c_str(), message.c_str());
 }
 
+namespace {
+
+std::vector<const CLI::App*> Commands(const CLI::App& app) {
+  std::vector<const CLI::App*> commands;
+  for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; })) {
+    commands.push_back(command);
+  }
+  return commands;
+}
+
+const CLI::App* FindCommand(const CLI::App& app, const std::string& name) {
+  for (const CLI::App* command : Commands(app)) {
+    if (command->get_name() == name) return command;
+  }
+  return nullptr;
+}
+
+std::string CommandNames(const CLI::App& app) {
+  std::string names;
+  for (const CLI::App* command : Commands(app)) {
+    names += (names.empty() ? "" : ", ") + command->get_name();
+  }
+  return names;
+}
+
+}  // namespace
+
+// `bcot help [command]`, a missing or an unknown command; the exit code when one of those
+// applies (and was answered), else -1 (CLI11 parses the arguments).
+int HandleHelpAndUnknownCommands(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "bcot: a command is required: %s (bcot help <command>)\n",
+                 CommandNames(app).c_str());
+    return 2;
+  }
+  const std::string first = argv[1];
+  if (first == "help") {
+    if (argc == 2) {
+      std::printf("%s", app.help().c_str());
+      return 0;
+    }
+    const CLI::App* command = FindCommand(app, argv[2]);
+    if (command == nullptr) {
+      std::fprintf(stderr, "bcot: unknown command '%s'; the commands are: %s\n", argv[2],
+                   CommandNames(app).c_str());
+      return 2;
+    }
+    std::printf("%s", command->help().c_str());
+    return 0;
+  }
+  if (!first.empty() && first[0] != '-' && FindCommand(app, first) == nullptr) {
+    std::fprintf(stderr, "bcot: unknown command '%s'; the commands are: %s\n", first.c_str(),
+                 CommandNames(app).c_str());
+    return 2;
+  }
+  return -1;
+}
+
 }  // namespace bcot::tools
 
 int main(int argc, char** argv) {
@@ -42,6 +102,12 @@ int main(int argc, char** argv) {
   bcot::tools::AddAnnotateCommand(app, &exit_code);
   bcot::tools::AddBatchCommand(app, &exit_code);
   bcot::tools::AddReportCommand(app, &exit_code);
+  app.footer(
+      "bcot help <command> (or bcot <command> --help) lists a command's options.\nExit codes: 0 "
+      "success (annotation accepted), 1 failure, 2 usage or configuration error, 3 annotation "
+      "written but rejected by the quality check (annotate, batch, report).");
+  const int early = bcot::tools::HandleHelpAndUnknownCommands(app, argc, argv);
+  if (early >= 0) return early;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

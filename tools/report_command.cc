@@ -37,7 +37,7 @@ int RunReport(const ReportFlags& flags) {
     for (const std::string& reason : report->reasons) {
       std::fprintf(stderr, "  %s\n", reason.c_str());
     }
-    return 0;
+    return report->accepted ? 0 : kExitRejected;
   }
   if (!flags.sequence_dir.empty()) {
     PrintError("report", "--sequence needs one annotation directory (with config.resolved.yaml)");
@@ -56,7 +56,7 @@ int RunReport(const ReportFlags& flags) {
                                                     : "rejected");
   }
   std::fprintf(stderr, "bcot report: summary: %s/summary.html\n", flags.annotation_dir.c_str());
-  return result->all_succeeded() ? 0 : 1;
+  return result->ExitCode();
 }
 
 }  // namespace

@@ -224,6 +224,13 @@ int BatchResult::num_failed() const {
   }));
 }
 
+int BatchResult::ExitCode() const {
+  if (num_failed() > 0) return 1;
+  const bool any_rejected =
+      std::any_of(sequences.begin(), sequences.end(), [](const auto& s) { return !s.accepted; });
+  return any_rejected ? kExitRejected : 0;
+}
+
 StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_dir,
                                const BatchOptions& options, const BatchProgressCallback& progress) {
   BCOT_RETURN_IF_ERROR(options.Validate());

@@ -135,7 +135,7 @@ SequenceRunner MakeChildProcessRunner(const std::string& executable) {
     if (code == 127 && output.last_line().empty()) {
       return Status::Internal(fmt::format("{}: cannot be run", executable));
     }
-    if (code != 0) {
+    if (code != 0 && code != kExitRejected) {
       // The child's own message, without its "bcot annotate: error: " prefix.
       std::string message = output.last_line();
       const std::string prefix = "bcot annotate: error: ";

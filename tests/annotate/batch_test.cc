@@ -90,6 +90,21 @@ TEST(BatchTest, ParseShardAcceptsKOverNOnly) {
   }
 }
 
+TEST(BatchResultTest, ExitCodeIsFailureThenRejectionThenSuccess) {
+  BatchResult result;
+  result.sequences.resize(2);
+  for (BatchSequenceResult& sequence : result.sequences) {
+    sequence.outcome = BatchOutcome::kAnnotated;
+    sequence.accepted = true;
+  }
+  EXPECT_EQ(result.ExitCode(), 0);
+  result.sequences[1].outcome = BatchOutcome::kSkipped;
+  result.sequences[1].accepted = false;
+  EXPECT_EQ(result.ExitCode(), kExitRejected);
+  result.sequences[0].outcome = BatchOutcome::kFailed;
+  EXPECT_EQ(result.ExitCode(), 1);
+}
+
 // Two tiny sequences in a tree plus a broken one.
 class BatchRunTest : public ::testing::Test {
  protected:

@@ -1,5 +1,6 @@
 // `bcot batch` and `bcot report` end to end, including a batch killed with SIGKILL mid-way.
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
@@ -7,8 +8,6 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <fmt/format.h>
-
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -57,7 +56,8 @@ test::TempDir* BatchCommandTest::dir_ = nullptr;
 
 std::vector<std::string> AnnotationDirs(const std::string& out) {
   std::vector<std::string> dirs;
-  for (int i = 0; i < kSequences; ++i) dirs.push_back(out + fmt::format("/group{}/seq{}", i % 2, i));
+  for (int i = 0; i < kSequences; ++i)
+    dirs.push_back(out + fmt::format("/group{}/seq{}", i % 2, i));
   return dirs;
 }
 
@@ -88,9 +88,9 @@ void ExpectNothingHalfWritten(const std::string& out) {
   }
   for (const std::string& dir : AnnotationDirs(out)) {
     if (!fs::exists(dir + "/DONE")) continue;
-    for (const char* file : {"rig_from_object.txt", "cam0/pose.txt", "cam1/pose.txt",
-                             "frames.csv", "quality.json", "quality.csv", "report.html",
-                             "config.resolved.yaml"}) {
+    for (const char* file :
+         {"rig_from_object.txt", "cam0/pose.txt", "cam1/pose.txt", "frames.csv", "quality.json",
+          "quality.csv", "report.html", "config.resolved.yaml"}) {
       EXPECT_TRUE(fs::exists(dir + "/" + file)) << dir << "/" << file;
     }
   }
@@ -110,8 +110,9 @@ TEST_F(BatchCommandTest, KilledMidWayRerunFinishesWithoutRedoingFinishedSequence
   const std::string binary = test::BcotBinary();
   const std::string root = dir_->File("root");
   // The annotation setting (5 rounds) on one job, so sequences finish one after another.
-  std::vector<std::string> args = {binary, "batch", root, "--out", out, "--jobs", "1",
-                                   "--quiet", "--config", test::SourcePath("configs/annotate.yaml")};
+  std::vector<std::string> args = {
+      binary,   "batch", root,      "--out",    out,
+      "--jobs", "1",     "--quiet", "--config", test::SourcePath("configs/annotate.yaml")};
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
   argv.push_back(nullptr);
@@ -149,10 +150,9 @@ TEST_F(BatchCommandTest, KilledMidWayRerunFinishesWithoutRedoingFinishedSequence
     }
   }
   std::string output;
-  const int code = test::RunCommand(
-      Batch("--out " + out + " --jobs 2 --quiet --config " +
-            test::SourcePath("configs/annotate.yaml")),
-      &output);
+  const int code = test::RunCommand(Batch("--out " + out + " --jobs 2 --quiet --config " +
+                                          test::SourcePath("configs/annotate.yaml")),
+                                    &output);
   EXPECT_TRUE(code == 0 || code == 1) << output;
   EXPECT_EQ(code, 0) << output;
   EXPECT_EQ(CountDone(out), kSequences);
@@ -178,8 +178,7 @@ TEST_F(BatchCommandTest, ShardsConfigErrorsAndReport) {
   EXPECT_EQ(test::RunCommand(Batch("--out " + out + " --set frame.roundz=1"), &output), 2);
   EXPECT_THAT(output, HasSubstr("roundz"));
   // Shard 1 of 2 of the sorted corpus (group0/seq0, group0/seq2, group1/seq1).
-  ASSERT_EQ(test::RunCommand(Batch("--out " + out + " --shard 1/2 --set frame.rounds=1"),
-                             &output),
+  ASSERT_EQ(test::RunCommand(Batch("--out " + out + " --shard 1/2 --set frame.rounds=1"), &output),
             0)
       << output;
   EXPECT_TRUE(fs::exists(out + "/group0/seq2/DONE"));
@@ -192,7 +191,7 @@ TEST_F(BatchCommandTest, ShardsConfigErrorsAndReport) {
   EXPECT_EQ(test::RunCommand(test::BcotBinary() + " report " + out +
                                  "/group0/seq2 --set quality.threshold_px=0.000001",
                              &output),
-            0)
+            kExitRejected)
       << output;
   EXPECT_THAT(output, HasSubstr("rejected"));
   EXPECT_TRUE(fs::exists(out + "/group0/seq2/report.html"));

@@ -6,9 +6,9 @@
 namespace bcot {
 namespace {
 
-using ::testing::HasSubstr;
 using test::BcotBinary;
 using test::RunCommand;
+using ::testing::HasSubstr;
 
 TEST(CliTest, HelpListsSubcommandsAndExitsZero) {
   std::string output;
@@ -20,6 +20,27 @@ TEST(CliTest, VersionExitsZero) {
   std::string output;
   EXPECT_EQ(RunCommand(BcotBinary() + " --version", &output), 0);
   EXPECT_THAT(output, HasSubstr(BCOT_VERSION));
+}
+
+TEST(CliTest, HelpCommandShowsTheCommandListOrOneCommand) {
+  std::string output;
+  EXPECT_EQ(RunCommand(BcotBinary() + " help", &output), 0);
+  EXPECT_THAT(output, HasSubstr("annotate"));
+  EXPECT_THAT(output, HasSubstr("Exit codes"));
+  EXPECT_EQ(RunCommand(BcotBinary() + " help annotate", &output), 0);
+  EXPECT_THAT(output, HasSubstr("--out"));
+  EXPECT_THAT(output, HasSubstr("edge.enabled"));  // the options footer
+}
+
+TEST(CliTest, UnknownCommandIsNamedWithTheCommandList) {
+  std::string output;
+  EXPECT_EQ(RunCommand(BcotBinary() + " annotat seq", &output), 2);
+  EXPECT_THAT(output, HasSubstr("unknown command 'annotat'"));
+  EXPECT_THAT(output, HasSubstr("synth, export"));
+  EXPECT_EQ(RunCommand(BcotBinary() + " help no-such-command", &output), 2);
+  EXPECT_THAT(output, HasSubstr("unknown command 'no-such-command'"));
+  EXPECT_EQ(RunCommand(BcotBinary(), &output), 2);
+  EXPECT_THAT(output, HasSubstr("a command is required"));
 }
 
 TEST(CliTest, UsageErrorsExitTwo) {

@@ -96,6 +96,8 @@ struct BatchResult {
   std::vector<BatchSequenceResult> sequences;  // in sorted order
   int num_failed() const;
   bool all_succeeded() const { return num_failed() == 0; }
+  // 1 when a sequence failed, else kExitRejected when one was rejected, else 0.
+  int ExitCode() const;
 };
 
 // Live state for a progress display; callbacks may come from any thread, serialised.

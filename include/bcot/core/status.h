@@ -22,6 +22,10 @@ enum class StatusCode {
   kInternal,       // a library call failed for reasons the user cannot fix
 };
 
+// Exit code of `bcot annotate`, `batch` and `report` when every annotation was written but the
+// quality check rejected one (0 accepted, 1 failure, 2 usage or configuration error).
+inline constexpr int kExitRejected = 3;
+
 class [[nodiscard]] Status {
  public:
   Status() = default;  // OK
@@ -38,7 +42,8 @@ class [[nodiscard]] Status {
   StatusCode code() const { return code_; }
   const std::string& message() const { return message_; }
 
-  // Process exit code for a tool: 0 success, 2 usage/config error, 1 any other failure.
+  // Process exit code for a tool: 0 success, 2 usage/config error, 1 any other failure
+  // (kExitRejected below is the fourth code, for a finished but rejected annotation).
   int ExitCode() const {
     if (ok()) return 0;
     return code_ == StatusCode::kInvalidConfig ? 2 : 1;
@@ -59,7 +64,7 @@ class [[nodiscard]] Status {
 template <typename T>
 class [[nodiscard]] StatusOr {
  public:
-  StatusOr(T value) : value_(std::move(value)) {}  // NOLINT(runtime/explicit)
+  StatusOr(T value) : value_(std::move(value)) {}         // NOLINT(runtime/explicit)
   StatusOr(Status status) : status_(std::move(status)) {  // NOLINT(runtime/explicit)
     if (status_.ok()) status_ = Status::Internal("StatusOr constructed from an OK status");
   }
@@ -83,26 +88,26 @@ class [[nodiscard]] StatusOr {
 }  // namespace bcot
 
 // Invariant check: a failure is a bug in bcot, never the user's input.
-#define BCOT_CHECK(condition)                                                           \
-  do {                                                                                  \
-    if (!(condition)) {                                                                 \
+#define BCOT_CHECK(condition)                                                            \
+  do {                                                                                   \
+    if (!(condition)) {                                                                  \
       std::fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #condition); \
-      std::abort();                                                                     \
-    }                                                                                   \
+      std::abort();                                                                      \
+    }                                                                                    \
   } while (false)
 
 // Propagates a non-OK Status from an expression returning Status.
-#define BCOT_RETURN_IF_ERROR(expr)      \
-  do {                                  \
-    ::bcot::Status bcot_status_ = (expr); \
+#define BCOT_RETURN_IF_ERROR(expr)               \
+  do {                                           \
+    ::bcot::Status bcot_status_ = (expr);        \
     if (!bcot_status_.ok()) return bcot_status_; \
   } while (false)
 
 #define BCOT_CONCAT_INNER(a, b) a##b
 #define BCOT_CONCAT(a, b) BCOT_CONCAT_INNER(a, b)
 // BCOT_ASSIGN_OR_RETURN(auto x, ReadThing()); moves the value out or returns the Status.
-#define BCOT_ASSIGN_OR_RETURN(lhs, expr)                          \
-  auto BCOT_CONCAT(bcot_statusor_, __LINE__) = (expr);            \
-  if (!BCOT_CONCAT(bcot_statusor_, __LINE__).ok())                \
-    return BCOT_CONCAT(bcot_statusor_, __LINE__).status();        \
+#define BCOT_ASSIGN_OR_RETURN(lhs, expr)                   \
+  auto BCOT_CONCAT(bcot_statusor_, __LINE__) = (expr);     \
+  if (!BCOT_CONCAT(bcot_statusor_, __LINE__).ok())         \
+    return BCOT_CONCAT(bcot_statusor_, __LINE__).status(); \
   lhs = std::move(BCOT_CONCAT(bcot_statusor_, __LINE__)).value()
