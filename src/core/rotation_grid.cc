@@ -32,8 +32,10 @@ std::vector<Eigen::Quaterniond> SuperFibonacciRotations(int count) {
 }
 
 double QuaternionAngleDeg(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
-  const double dot = std::min(1.0, std::abs(a.coeffs().dot(b.coeffs())));
-  return 2.0 * std::acos(dot) * 180.0 / kPi;
+  // atan2 of the relative rotation's half-angle sine and cosine: exact near 0 and 180°, where
+  // acos of the dot product loses half the digits.
+  const Eigen::Quaterniond relative = a.conjugate() * b;
+  return 2.0 * std::atan2(relative.vec().norm(), std::abs(relative.w())) * 180.0 / kPi;
 }
 
 }  // namespace bcot
