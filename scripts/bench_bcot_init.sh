@@ -31,7 +31,7 @@ for object in bunny.obj spool.off pinion.off; do
     if [ ! -f "$seq_dir/rig.yaml" ]; then
       "$bcot" synth --quiet --config configs/synth/demo.yaml --out "$seq_dir" \
         --set seed="$seed" --set motion.num_frames=1 \
-        --set object.mesh="$PWD/data/meshes/$object" >/dev/null
+        --set object.mesh="$PWD/data/meshes/$object" >/dev/null 2>"$seq_dir.synth.log"
       rm -f "$seq_dir/init_pose.txt"
     fi
     for mode in 2 1; do

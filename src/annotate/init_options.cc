@@ -131,14 +131,16 @@ StatusOr<ImageClick> ParseImageClick(const std::string& text) {
                   text));
   const size_t colon = text.rfind(':');
   if (colon == std::string::npos || colon == 0) return malformed;
-  const std::vector<std::string> numbers = SplitTokens(text.substr(colon + 1), ",");
-  if (numbers.size() != 2 || text.substr(colon + 1).find(",,") != std::string::npos) {
+  const std::string pixel = text.substr(colon + 1);
+  const size_t comma = pixel.find(',');
+  if (comma == std::string::npos || pixel.find(',', comma + 1) != std::string::npos) {
     return malformed;
   }
   ImageClick click;
   click.camera = text.substr(0, colon);
-  if (!ParseDouble(TrimWhitespace(numbers[0]), &click.pixel.x()) ||
-      !ParseDouble(TrimWhitespace(numbers[1]), &click.pixel.y()) || !click.pixel.allFinite()) {
+  if (!ParseDouble(TrimWhitespace(pixel.substr(0, comma)), &click.pixel.x()) ||
+      !ParseDouble(TrimWhitespace(pixel.substr(comma + 1)), &click.pixel.y()) ||
+      !click.pixel.allFinite()) {
     return malformed;
   }
   return click;

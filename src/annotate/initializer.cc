@@ -13,6 +13,7 @@
 #include <numeric>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -80,30 +81,20 @@ class PoseScorer {
     region_.contour.precision_px = 1.0 / 16.0;
   }
 
-  // Mean F per band pixel over the views; +∞ when no view has a band pixel.
+  // The mean over the views of each view's mean F per band pixel; a view without band pixels
+  // (the object outside it, or behind its camera) counts as uninformative, F = log 2 (P_f = P_b
+  // = ½), so that poses hiding the object from some views do not escape their evidence. +∞ when
+  // no view has a band pixel.
   double Score(const Eigen::Isometry3d& rig_from_objcentre) const {
-    double energy = 0.0;
-    size_t pixels = 0;
-    const PoseParameters parameters = ToPoseParameters(rig_from_objcentre);
+    double sum = 0.0;
+    bool any_visible = false;
     for (const ScaledView& view : views_) {
-      const Silhouette silhouette = RenderSilhouette(
-          caster_, view.camera, view.cam_from_rig * rig_from_objcentre * objcentre_from_template_,
-          region_.contour);
-      if (silhouette.contour.empty()) continue;
-      GlobalColorModel model(color_);
-      model.Update(view.image, silhouette);
-      if (!model.initialized()) continue;
-      StatusOr<RegionTemplate> region_template =
-          BuildRegionTemplate(caster_, view.camera, view.cam_from_rig, rig_from_objcentre,
-                              view.image, model, silhouette, region_);
-      if (!region_template.ok() || region_template->pixels.empty()) continue;
-      pixels += region_template->pixels.size();
-      const RegionCostFunction cost(view.camera, view.cam_from_rig, std::move(*region_template),
-                                    cost_);
-      energy += cost.Energy(parameters.data());
+      const std::optional<double> mean = ViewMeanEnergy(view, rig_from_objcentre);
+      any_visible = any_visible || mean.has_value();
+      sum += mean.value_or(std::log(2.0));
     }
-    if (pixels == 0 || !std::isfinite(energy)) return std::numeric_limits<double>::infinity();
-    return energy / pixels;
+    if (!any_visible || !std::isfinite(sum)) return std::numeric_limits<double>::infinity();
+    return sum / views_.size();
   }
 
   // The object's silhouette masks at the pose, one per view.
@@ -119,6 +110,27 @@ class PoseScorer {
   }
 
  private:
+  // Mean F per band pixel of one view with a colour model learned at the pose; none when the
+  // view has no band pixel.
+  std::optional<double> ViewMeanEnergy(const ScaledView& view,
+                                       const Eigen::Isometry3d& rig_from_objcentre) const {
+    const Silhouette silhouette = RenderSilhouette(
+        caster_, view.camera, view.cam_from_rig * rig_from_objcentre * objcentre_from_template_,
+        region_.contour);
+    if (silhouette.contour.empty()) return std::nullopt;
+    GlobalColorModel model(color_);
+    model.Update(view.image, silhouette);
+    if (!model.initialized()) return std::nullopt;
+    StatusOr<RegionTemplate> region_template =
+        BuildRegionTemplate(caster_, view.camera, view.cam_from_rig, rig_from_objcentre, view.image,
+                            model, silhouette, region_);
+    if (!region_template.ok() || region_template->pixels.empty()) return std::nullopt;
+    const double pixels = static_cast<double>(region_template->pixels.size());
+    const RegionCostFunction cost(view.camera, view.cam_from_rig, std::move(*region_template),
+                                  cost_);
+    return cost.Energy(ToPoseParameters(rig_from_objcentre).data()) / pixels;
+  }
+
   const RayCaster& caster_;
   Eigen::Isometry3d objcentre_from_template_;
   std::vector<ScaledView> views_;

@@ -10,7 +10,7 @@
 // Haar measure is the uniform measure on S³ modulo ±q). The nearest-neighbour angle and the
 // covering radius (the largest angle from any rotation to its nearest grid rotation) both
 // shrink like n^(−1/3). Measured by rotation_grid_test for n = 5,000: nearest-neighbour angles
-// 3.3°–13.4°, every one of 2,000 random rotations within 12.4° of a grid rotation (an optimal
+// 8.6°–13.4°, every one of 2,000 random rotations within 12.4° of a grid rotation (an optimal
 // covering of SO(3) by 5,000 balls would need 8.9°).
 #pragma once
 
