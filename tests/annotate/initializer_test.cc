@@ -51,7 +51,7 @@ TEST(InitializerTest, MalformedClicksNameTheFlagAndTheText) {
 TEST(InitializerTest, RequestChecksNameTheFlag) {
   const Sequence sequence = TwoCameraSequence();
   InitRequest request;
-  request.clicks = {{"left", {10, 10}}, {"right", {300, 10}}};
+  request.clicks = {{"left", {10, 10}}, {"right", {330, 10}}};
   EXPECT_THAT(CheckInitRequest(sequence, request).message(),
               HasSubstr("outside right's 320x256 image"));
   request.clicks = {{"left", {639.5, 511.5}}, {"right", {-0.5, 0}}};  // the image's edges
