@@ -6,8 +6,11 @@
       of the object centre (bounding-box centre of the mesh) at FRAME from SEQ/gt, moved by a
       uniform random offset in [-JITTER_PX, JITTER_PX] per axis.
   init_bench_util.py error SEQ FRAME POSE_FILE
-      prints "ROTATION_DEG TRANSLATION_MM" of POSE_FILE's first pose against SEQ/gt at FRAME
-      (the translation error of the object centre, rig frame).
+      prints "ROTATION_DEG TRANSLATION_MM ADDS_OVER_D" of POSE_FILE's first pose against SEQ/gt
+      at FRAME: the rotation error, the translation error of the object centre (rig frame), and
+      ADD-S (the mean distance from each of up to 400 mesh vertices at the estimate to the
+      nearest vertex at the truth, which does not count errors along a symmetry of the object)
+      over the longest bounding-box side d.
 """
 import math
 import os
@@ -32,7 +35,7 @@ def apply(pose, p):
     return [sum(r[i][k] * p[k] for k in range(3)) + t[i] for i in range(3)]
 
 
-def mesh_centre(seq):
+def mesh_vertices(seq):
     with open(os.path.join(seq, "object.yaml")) as f:
         obj = yaml.safe_load(f)
     path = os.path.join(seq, obj["mesh"])
@@ -49,9 +52,34 @@ def mesh_centre(seq):
         for line in lines:
             if line.startswith("v "):
                 verts.append([float(x) for x in line.split()[1:4]])
+    return [[x * scale for x in v] for v in verts]
+
+
+def bbox(verts):
     lo = [min(v[i] for v in verts) for i in range(3)]
     hi = [max(v[i] for v in verts) for i in range(3)]
-    return [0.5 * (lo[i] + hi[i]) * scale for i in range(3)]
+    return lo, hi
+
+
+def mesh_centre(seq):
+    lo, hi = bbox(mesh_vertices(seq))
+    return [0.5 * (lo[i] + hi[i]) for i in range(3)]
+
+
+def adds_over_d(seq, gt, est):
+    verts = mesh_vertices(seq)
+    lo, hi = bbox(verts)
+    d = max(hi[i] - lo[i] for i in range(3))
+    step = max(1, len(verts) // 400)
+    truth = [apply(gt, v) for v in verts[::max(1, len(verts) // 2000)]]
+    total = 0.0
+    count = 0
+    for v in verts[::step]:
+        p = apply(est, v)
+        total += math.sqrt(min((p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2 + (p[2] - q[2]) ** 2
+                               for q in truth))
+        count += 1
+    return total / count / d
 
 
 def project(cam, p):
@@ -91,7 +119,7 @@ def error(seq, frame, pose_file):
     c = mesh_centre(seq)
     a, b = apply(gt, c), apply(est, c)
     mm = math.sqrt(sum((a[i] - b[i]) ** 2 for i in range(3)))
-    print("%.3f %.3f" % (deg, mm))
+    print("%.3f %.3f %.4f" % (deg, mm, adds_over_d(seq, gt, est)))
 
 
 if __name__ == "__main__":

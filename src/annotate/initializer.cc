@@ -210,33 +210,45 @@ std::vector<RigRay> ClickRays(const Sequence& sequence, const InitRequest& reque
   return rays;
 }
 
-// The grid search: the best poses at the clicked centre (or along the clicked ray).
+// The object centre the grid is searched at (result->centre_in_rig and centre_source): the
+// clicks triangulated, the point at the given distance on one click's ray, or the best of a
+// depth sweep along it.
+Status LocateCentre(const Sequence& sequence, const PoseScorer& scorer, double diameter_mm,
+                    const InitRequest& request, const InitializerOptions& options,
+                    InitResult* result) {
+  const std::vector<RigRay> rays = ClickRays(sequence, request);
+  if (rays.size() >= 2) {
+    BCOT_ASSIGN_OR_RETURN(result->centre_in_rig, TriangulateRays(rays));
+    result->centre_source = fmt::format("{} clicks", rays.size());
+    return Status::Ok();
+  }
+  if (request.distance_mm.has_value()) {
+    result->centre_in_rig = rays[0].origin_in_rig + *request.distance_mm * rays[0].direction_in_rig;
+    result->centre_source = fmt::format("1 click at {:g} mm", *request.distance_mm);
+    return Status::Ok();
+  }
+  const Camera& camera = sequence.rig[sequence.rig.Find(request.clicks[0].camera)].camera;
+  const std::vector<ScoredPose> depths =
+      ScoreGrid(scorer, SuperFibonacciRotations(options.depth_grid_rotations),
+                DepthCentres(rays[0], camera, diameter_mm, options));
+  result->poses_scored += static_cast<int>(depths.size());
+  if (!std::isfinite(depths.front().energy)) {
+    return Status::InvalidInput("no depth along the clicked ray shows the object in any view");
+  }
+  result->centre_in_rig = depths.front().rig_from_objcentre.translation();
+  result->centre_source = fmt::format("1 click, depth searched ({:.0f} mm)",
+                                      (result->centre_in_rig - rays[0].origin_in_rig).norm());
+  return Status::Ok();
+}
+
+// The grid search: the best distinct poses at the object centre.
 StatusOr<std::vector<ScoredPose>> SearchGrid(const Sequence& sequence, const PoseScorer& scorer,
                                              double diameter_mm, const InitRequest& request,
                                              const InitializerOptions& options,
                                              InitResult* result) {
-  const std::vector<RigRay> rays = ClickRays(sequence, request);
-  const std::vector<Eigen::Quaterniond> grid = SuperFibonacciRotations(options.grid_rotations);
-  if (rays.size() >= 2) {
-    BCOT_ASSIGN_OR_RETURN(result->centre_in_rig, TriangulateRays(rays));
-    result->centre_source = fmt::format("{} clicks", rays.size());
-  } else if (request.distance_mm.has_value()) {
-    result->centre_in_rig = rays[0].origin_in_rig + *request.distance_mm * rays[0].direction_in_rig;
-    result->centre_source = fmt::format("1 click at {:g} mm", *request.distance_mm);
-  } else {
-    const Camera& camera = sequence.rig[sequence.rig.Find(request.clicks[0].camera)].camera;
-    const std::vector<ScoredPose> depths =
-        ScoreGrid(scorer, SuperFibonacciRotations(options.depth_grid_rotations),
-                  DepthCentres(rays[0], camera, diameter_mm, options));
-    result->poses_scored += static_cast<int>(depths.size());
-    if (!std::isfinite(depths.front().energy)) {
-      return Status::InvalidInput("no depth along the clicked ray shows the object in any view");
-    }
-    result->centre_in_rig = depths.front().rig_from_objcentre.translation();
-    result->centre_source = fmt::format("1 click, depth searched ({:.0f} mm)",
-                                        (result->centre_in_rig - rays[0].origin_in_rig).norm());
-  }
-  const std::vector<ScoredPose> scored = ScoreGrid(scorer, grid, {result->centre_in_rig});
+  BCOT_RETURN_IF_ERROR(LocateCentre(sequence, scorer, diameter_mm, request, options, result));
+  const std::vector<ScoredPose> scored =
+      ScoreGrid(scorer, SuperFibonacciRotations(options.grid_rotations), {result->centre_in_rig});
   result->poses_scored += static_cast<int>(scored.size());
   if (!std::isfinite(scored.front().energy)) {
     return Status::InvalidInput(fmt::format(
@@ -305,13 +317,17 @@ std::vector<InitCandidate> RankDistinct(std::vector<InitCandidate> candidates,
                    [&](size_t a, size_t b) { return candidates[a].energy < candidates[b].energy; });
   std::vector<size_t> kept;
   for (size_t i : order) {
-    const bool same = std::any_of(kept.begin(), kept.end(), [&](size_t k) {
+    const auto same = std::find_if(kept.begin(), kept.end(), [&](size_t k) {
       for (size_t v = 0; v < masks[i].size(); ++v) {
         if (IntersectionOverUnion(masks[i][v], masks[k][v]) <= same_iou) return false;
       }
       return true;
     });
-    if (!same) kept.push_back(i);
+    if (same == kept.end()) {
+      kept.push_back(i);
+    } else {
+      ++candidates[*same].merged;
+    }
   }
   std::vector<InitCandidate> distinct;
   for (size_t i : kept) distinct.push_back(candidates[i]);
@@ -449,13 +465,15 @@ std::string FormatInitSummary(const InitResult& result) {
       "refined in {:.1f} s\n",
       result.centre_in_rig.x(), result.centre_in_rig.y(), result.centre_in_rig.z(),
       result.centre_source, result.poses_scored, result.search_seconds, result.refine_seconds);
-  text += "  rank  energy    grid_energy  rotation_to_best_deg  translation_to_best_mm\n";
+  text +=
+      "  rank  energy    grid_energy  refined_starts  rotation_to_best_deg  "
+      "translation_to_best_mm\n";
   const InitCandidate& best = result.candidates.front();
   for (size_t i = 0; i < result.candidates.size(); ++i) {
     const InitCandidate& c = result.candidates[i];
     text += fmt::format(
-        "  {:<4}  {:<8.5f}  {:<11.5f}  {:<20.1f}  {:.1f}\n", i + 1, c.energy, c.grid_energy,
-        RotationDistanceDeg(c.rig_from_object.linear(), best.rig_from_object.linear()),
+        "  {:<4}  {:<8.5f}  {:<11.5f}  {:<14}  {:<20.1f}  {:.1f}\n", i + 1, c.energy, c.grid_energy,
+        c.merged, RotationDistanceDeg(c.rig_from_object.linear(), best.rig_from_object.linear()),
         (c.rig_from_object.translation() - best.rig_from_object.translation()).norm());
   }
   if (result.candidates.size() < 2) {

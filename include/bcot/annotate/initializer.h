@@ -114,6 +114,7 @@ struct InitCandidate {
   double grid_energy = 0.0;  // score of the grid pose it was refined from (search scale)
   double energy = 0.0;       // score after refinement (rank scale); lower is better
   FrameSummary summary;      // the refinement's last solve
+  int merged = 1;            // refined grid poses that ended at this answer (IoU > same_iou)
 };
 
 struct InitResult {
