@@ -62,8 +62,14 @@ int RunInit(const InitFlags& flags) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr, "bcot init: %s", FormatInitSummary(*result).c_str());
-  std::fprintf(stderr, "bcot init: wrote %s (frame %d) in %.1f s\n", outputs.pose_path.c_str(),
+  std::string files;
+  for (const std::string& path : result->pose_files) files += (files.empty() ? "" : ", ") + path;
+  std::fprintf(stderr, "bcot init: wrote %s (frame %d, with overlays) in %.1f s\n", files.c_str(),
                flags.frame, seconds);
+  if (static_cast<int>(result->pose_files.size()) < 1 + flags.candidates) {
+    std::fprintf(stderr, "bcot init: only %zu distinct answer(s) for --candidates %d\n",
+                 result->candidates.size(), flags.candidates);
+  }
   return 0;
 }
 

@@ -421,7 +421,7 @@ Status CheckInitOutputs(const InitOutputs& outputs) {
 
 Status WriteInitOutputs(const InitOutputs& outputs, const InitResult& result,
                         const Sequence& sequence, const RayCaster& caster,
-                        const std::vector<cv::Mat3b>& images) {
+                        const std::vector<cv::Mat3b>& images, std::vector<std::string>* written) {
   BCOT_CHECK(!result.candidates.empty());
   const std::vector<std::string> paths = InitPosePaths(outputs);
   for (int k = 0; k <= outputs.num_candidates; ++k) {
@@ -432,6 +432,7 @@ Status WriteInitOutputs(const InitOutputs& outputs, const InitResult& result,
     BCOT_RETURN_IF_ERROR(WritePoseFile(paths[k], {rig_from_object}));
     BCOT_RETURN_IF_ERROR(
         WriteOverlays(CandidateStem(outputs, k), rig_from_object, sequence, caster, images));
+    if (written != nullptr) written->push_back(paths[k]);
   }
   return Status::Ok();
 }
@@ -455,7 +456,8 @@ StatusOr<InitResult> InitializeSequenceDir(const std::string& sequence_dir,
   const RayCaster caster(mesh);
   BCOT_ASSIGN_OR_RETURN(InitResult result,
                         FindInitialPose(sequence, caster, images, request, options));
-  BCOT_RETURN_IF_ERROR(WriteInitOutputs(outputs, result, sequence, caster, images));
+  BCOT_RETURN_IF_ERROR(
+      WriteInitOutputs(outputs, result, sequence, caster, images, &result.pose_files));
   return result;
 }
 

@@ -125,6 +125,7 @@ struct InitResult {
   int poses_scored = 0;       // grid (and depth) poses scored
   double search_seconds = 0.0;
   double refine_seconds = 0.0;
+  std::vector<std::string> pose_files;  // written by InitializeSequenceDir, pose_path first
 };
 
 // The search and refinement on the frame's images (rig order, capture size). The request must
@@ -147,13 +148,16 @@ std::vector<std::string> InitPosePaths(const InitOutputs& outputs);
 // kInvalidConfig naming the file and --overwrite when a pose file exists and !overwrite.
 Status CheckInitOutputs(const InitOutputs& outputs);
 // Writes the files (atomically). The best candidate goes to pose_path; candidate k to its
-// cand file when k <= candidates found.
+// cand file when k <= candidates found (a cand file beyond them is neither written nor
+// removed). `written` (may be null) receives the pose files written, pose_path first.
 Status WriteInitOutputs(const InitOutputs& outputs, const InitResult& result,
                         const Sequence& sequence, const RayCaster& caster,
-                        const std::vector<cv::Mat3b>& images);
+                        const std::vector<cv::Mat3b>& images,
+                        std::vector<std::string>* written = nullptr);
 
 // The whole command: load the sequence and its frame, check the request and the outputs
-// before any work, search, write.
+// before any work, search, write (result.pose_files). Every camera of the rig is used (the
+// annotate options' views.* are not).
 StatusOr<InitResult> InitializeSequenceDir(const std::string& sequence_dir,
                                            const InitRequest& request, const InitOptions& options,
                                            const InitOutputs& outputs);
