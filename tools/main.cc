@@ -99,6 +99,7 @@ int main(int argc, char** argv) {
   bcot::tools::AddEvalCommand(app, &exit_code);
   bcot::tools::AddCalibrateCommand(app, &exit_code);
   bcot::tools::AddCaptureCommand(app, &exit_code);
+  bcot::tools::AddInitCommand(app, &exit_code);
   bcot::tools::AddAnnotateCommand(app, &exit_code);
   bcot::tools::AddBatchCommand(app, &exit_code);
   bcot::tools::AddReportCommand(app, &exit_code);

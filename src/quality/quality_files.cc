@@ -11,6 +11,7 @@
 #include "bcot/core/file_util.h"
 #include "bcot/core/html.h"
 #include "bcot/core/image_io.h"
+#include "bcot/render/contour_drawing.h"
 #include "bcot/render/mesh.h"
 
 namespace bcot {
@@ -88,19 +89,7 @@ StatusOr<std::string> Thumbnail(const RayCaster& caster, const Camera& camera,
       std::min(4.0, double(options.thumbnail_px) / std::max(box.width, box.height));
   cv::Mat crop;
   cv::resize(image(box), crop, cv::Size(), scale, scale, cv::INTER_AREA);
-  constexpr int kShift = 4;  // fixed-point bits for sub-pixel drawing
-  std::vector<std::vector<cv::Point>> polylines;
-  int current = -1;
-  for (const ContourPoint& point : contour) {
-    if (point.contour_id != current) {
-      polylines.emplace_back();
-      current = point.contour_id;
-    }
-    const Eigen::Vector2d p = (point.pixel - Eigen::Vector2d(box.x, box.y)) * scale;
-    polylines.back().emplace_back(int(std::lround(p.x() * (1 << kShift))),
-                                  int(std::lround(p.y() * (1 << kShift))));
-  }
-  cv::polylines(crop, polylines, true, cv::Scalar(0, 255, 0), 1, cv::LINE_AA, kShift);
+  DrawContour(contour, cv::Scalar(0, 255, 0), &crop, Eigen::Vector2d(box.x, box.y), scale);
   std::vector<unsigned char> png;
   if (!cv::imencode(".png", crop, png)) return Status::Internal("cannot encode a PNG thumbnail");
   return Base64(png);
