@@ -12,6 +12,7 @@
 #include "bcot/annotate/annotator.h"
 #include "bcot/quality/quality_files.h"
 #include "commands.h"
+#include "progress_line.h"
 
 namespace bcot::tools {
 namespace {
@@ -31,22 +32,23 @@ int RunAnnotate(const AnnotateFlags& flags) {
     return options.status().ExitCode();
   }
   const auto start = std::chrono::steady_clock::now();
+  ProgressLine line(!flags.quiet);
   AnnotateProgress progress;
   if (!flags.quiet) {
-    progress = [start](int done, int total) {
+    progress = [start, &line](int done, int total) {
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       const double fps = done / std::max(seconds, 1e-9);
       const double eta = (total - done) / std::max(fps, 1e-9);
-      std::fprintf(stderr, "\rbcot annotate: frame %d/%d  %.2f fps  ETA %.0f s   ", done, total,
-                   fps, eta);
-      if (done == total) std::fprintf(stderr, "\n");
+      line.Update(fmt::format("bcot annotate: frame {}/{}  {:.2f} fps  ETA {:.0f} s", done, total,
+                              fps, eta),
+                  done == total);
     };
   }
   const StatusOr<AnnotationOutcome> outcome =
       AnnotateSequenceDir(flags.sequence_dir, flags.out_dir, *options, progress);
   if (!outcome.ok()) {
-    if (!flags.quiet) std::fprintf(stderr, "\n");
+    line.Break();
     PrintError("annotate", outcome.status().message());
     return outcome.status().ExitCode();
   }

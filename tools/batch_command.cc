@@ -4,6 +4,8 @@
 // stderr, each sequence in its own `bcot annotate` process (child_process_runner.h) unless
 // --in-process; exit 0 when every sequence succeeded, 1 when any failed, 2 for usage/config
 // errors.
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -13,6 +15,7 @@
 #include "bcot/annotate/batch.h"
 #include "bcot/annotate/child_process_runner.h"
 #include "commands.h"
+#include "progress_line.h"
 
 namespace bcot::tools {
 namespace {
@@ -28,15 +31,13 @@ struct BatchFlags {
   bool in_process = false;
 };
 
-void PrintProgress(const BatchProgress& p) {
+std::string FormatProgress(const BatchProgress& p) {
   const double fps = p.frames_done / std::max(p.seconds, 1e-9);
   const double eta = (p.frames_total - p.frames_done) / std::max(fps, 1e-9);
-  std::fprintf(stderr,
-               "\rbcot batch: %d/%d sequences (%d skipped, %d failed)  %ld/%ld frames  "
-               "%.2f frames/s  ETA %s   ",
-               p.sequences_done, p.sequences_total, p.sequences_skipped, p.sequences_failed,
-               p.frames_done, p.frames_total, fps,
-               p.frames_done > 0 ? (std::to_string(static_cast<long>(eta)) + " s").c_str() : "?");
+  return fmt::format(
+      "bcot batch: {}/{} sequences ({} skipped, {} failed)  {}/{} frames  {:.2f} frames/s  ETA {}",
+      p.sequences_done, p.sequences_total, p.sequences_skipped, p.sequences_failed, p.frames_done,
+      p.frames_total, fps, p.frames_done > 0 ? fmt::format("{:.0f} s", eta) : "?");
 }
 
 int RunBatchCommand(const BatchFlags& flags) {
@@ -65,17 +66,15 @@ int RunBatchCommand(const BatchFlags& flags) {
     PrintError("batch", shard.message());
     return shard.ExitCode();
   }
-  double last_print = -1.0;
+  ProgressLine line(!flags.quiet, {/*tty_interval_s=*/0.5, /*log_interval_s=*/10.0});
   BatchProgressCallback progress;
   if (!flags.quiet) {
-    progress = [&last_print](const BatchProgress& p) {
-      if (p.seconds - last_print < 0.5 && p.sequences_done < p.sequences_total) return;
-      last_print = p.seconds;
-      PrintProgress(p);
+    progress = [&line](const BatchProgress& p) {
+      line.Update(FormatProgress(p), p.sequences_done == p.sequences_total);
     };
   }
   const StatusOr<BatchResult> result = RunBatch(flags.root, flags.out_dir, options, progress);
-  if (!flags.quiet) std::fprintf(stderr, "\n");
+  line.Break();
   if (!result.ok()) {
     PrintError("batch", result.status().message());
     return result.status().ExitCode();

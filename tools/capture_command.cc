@@ -59,14 +59,14 @@ class StopSignalScope {
   struct sigaction old_term_ = {};
 };
 
-// Prints "frames, fps per camera, drops" on stderr at most twice a second: rewritten in place
-// on a terminal, one line per update otherwise.
+// Prints "frames, fps per camera, drops" on stderr: rewritten in place on a terminal at most
+// twice a second, otherwise (a log) one line every 5 s.
 class StatusLine {
  public:
   void Update(const RecordingStats& stats, bool final_update) {
     const auto now = std::chrono::steady_clock::now();
     const double since = std::chrono::duration<double>(now - last_time_).count();
-    if (!final_update && since < 0.5 && !last_received_.empty()) return;
+    if (!final_update && since < (tty_ ? 0.5 : 5.0) && !last_received_.empty()) return;
     std::string cameras;
     for (size_t c = 0; c < stats.camera_names.size(); ++c) {
       const int64_t before = c < last_received_.size() ? last_received_[c] : 0;

@@ -25,6 +25,7 @@ struct EvalFlags {
   std::string results_root;
   bool online = false;
   std::string out_dir;
+  bool quiet = false;
 };
 
 int RunEval(const EvalFlags& flags) {
@@ -56,12 +57,13 @@ int RunEval(const EvalFlags& flags) {
   StatusOr<std::vector<SequenceResult>> results = Status::Internal("not run");
   if (flags.online) {
     const std::string poses_root = flags.out_dir.empty() ? "" : flags.out_dir + "/poses";
-    results = EvaluateOnline(*sequences, factory, *options, poses_root,
-                             [](int done, int total, const SequenceResult& result) {
-                               std::fprintf(stderr, "bcot eval: %d/%d %s/%s: %d resets\n", done,
-                                            total, result.scene.c_str(), result.object.c_str(),
-                                            result.num_resets);
-                             });
+    results = EvaluateOnline(
+        *sequences, factory, *options, poses_root,
+        [quiet = flags.quiet](int done, int total, const SequenceResult& result) {
+          if (quiet) return;
+          std::fprintf(stderr, "bcot eval: %d/%d %s/%s: %d resets\n", done, total,
+                       result.scene.c_str(), result.object.c_str(), result.num_resets);
+        });
   } else {
     results = EvaluateOffline(*sequences, flags.results_root, *options);
   }
@@ -99,6 +101,7 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
   command->add_option("--results", flags->results_root,
                       "Offline: tracker poses as <DIR>/<scene>/<Object>/pose.txt (cam_from_object "
                       "per frame, frames 0..N-1 or 1..N-1)");
+  command->add_flag("--quiet", flags->quiet, "No per-sequence progress on stderr");
   command->add_flag("--online", flags->online,
                     "Run bcot's tracker with the protocol (GT start, reset after a 5deg/5cm loss)");
   command->add_option("--tracker-config", flags->tracker_config.config_path,

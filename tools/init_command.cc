@@ -28,6 +28,7 @@ struct InitFlags {
   std::string out_path;
   bool overwrite = false;
   int candidates = 0;
+  bool quiet = false;
 };
 
 int RunInit(const InitFlags& flags) {
@@ -61,7 +62,7 @@ int RunInit(const InitFlags& flags) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::fprintf(stderr, "bcot init: %s", FormatInitSummary(*result).c_str());
+  if (!flags.quiet) std::fprintf(stderr, "bcot init: %s", FormatInitSummary(*result).c_str());
   std::string files;
   for (const std::string& path : result->pose_files) files += (files.empty() ? "" : ", ") + path;
   std::fprintf(stderr, "bcot init: wrote %s (frame %d, with overlays) in %.1f s\n", files.c_str(),
@@ -99,6 +100,7 @@ void AddInitCommand(CLI::App& app, int* exit_code) {
       ->type_name("D");
   command->add_option("--out", flags->out_path, "Pose file to write (default SEQ/init_pose.txt)");
   command->add_flag("--overwrite", flags->overwrite, "Replace existing pose files");
+  command->add_flag("--quiet", flags->quiet, "No candidate table on stderr, only what was written");
   command
       ->add_option("--candidates", flags->candidates,
                    "Also write the K best distinct poses to <out stem>.cand<k>.txt")

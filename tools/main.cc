@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "bcot/core/version.h"
 #include "commands.h"
 
 namespace bcot::tools {
@@ -91,7 +92,7 @@ int HandleHelpAndUnknownCommands(const CLI::App& app, int argc, char** argv) {
 
 int main(int argc, char** argv) {
   CLI::App app{"bcot: multi-view 6DoF pose annotation for textureless objects"};
-  app.set_version_flag("--version", BCOT_VERSION);
+  app.set_version_flag("--version", bcot::BcotVersion());
   app.require_subcommand(1);
   int exit_code = 0;
   bcot::tools::AddSynthCommand(app, &exit_code);

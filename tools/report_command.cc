@@ -1,4 +1,5 @@
-// bcot report <annotation dir> [--sequence DIR] [--set quality.key=value]...
+// bcot report <annotation dir> [--sequence DIR] [--config FILE] [--set quality.key=value]...
+// [--quiet]
 // Regenerates quality.json, quality.csv and report.html from the stored poses without
 // re-solving. Given a batch output root (no config.resolved.yaml in it), regenerates every
 // annotation directory below it and summary.json / summary.html.
@@ -19,14 +20,15 @@ namespace {
 struct ReportFlags {
   std::string annotation_dir;
   std::string sequence_dir;
-  std::vector<std::string> overrides;
+  ConfigFlags config;
+  bool quiet = false;
 };
 
 int RunReport(const ReportFlags& flags) {
   if (std::filesystem::exists(flags.annotation_dir + "/config.resolved.yaml") ||
       std::filesystem::exists(flags.annotation_dir + "/DONE")) {
-    const StatusOr<QualityReport> report =
-        RegenerateQualityReport(flags.annotation_dir, flags.sequence_dir, flags.overrides);
+    const StatusOr<QualityReport> report = RegenerateQualityReport(
+        flags.annotation_dir, flags.sequence_dir, flags.config.config_path, flags.config.overrides);
     if (!report.ok()) {
       PrintError("report", report.status().message());
       return report.status().ExitCode();
@@ -35,7 +37,7 @@ int RunReport(const ReportFlags& flags) {
                  flags.annotation_dir.c_str(), report->accepted ? "accepted" : "rejected",
                  flags.annotation_dir.c_str());
     for (const std::string& reason : report->reasons) {
-      std::fprintf(stderr, "  %s\n", reason.c_str());
+      if (!flags.quiet) std::fprintf(stderr, "  %s\n", reason.c_str());
     }
     return report->accepted ? 0 : kExitRejected;
   }
@@ -43,13 +45,14 @@ int RunReport(const ReportFlags& flags) {
     PrintError("report", "--sequence needs one annotation directory (with config.resolved.yaml)");
     return 2;
   }
-  const StatusOr<BatchResult> result =
-      RegenerateBatchReports(flags.annotation_dir, flags.overrides);
+  const StatusOr<BatchResult> result = RegenerateBatchReports(
+      flags.annotation_dir, flags.config.config_path, flags.config.overrides);
   if (!result.ok()) {
     PrintError("report", result.status().message());
     return result.status().ExitCode();
   }
   for (const BatchSequenceResult& s : result->sequences) {
+    if (flags.quiet) break;
     std::fprintf(stderr, "bcot report: %s: %s\n", s.relative_path.c_str(),
                  s.outcome == BatchOutcome::kFailed ? ("failed: " + s.error).c_str()
                  : s.accepted                       ? "accepted"
@@ -72,10 +75,9 @@ void AddReportCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::ExistingDirectory);
   command->add_option("--sequence", flags->sequence_dir,
                       "Sequence directory (default: as recorded in config.resolved.yaml)");
-  command->add_option("--set", flags->overrides,
-                      "Override an option of config.resolved.yaml, e.g. --set " +
-                          QualityOptionSchema().Example() + " (repeatable)");
-  command->footer(OptionsFooter(QualityOptionSchema().Help()));
+  // --config replaces the annotation's config.resolved.yaml; only `quality` and `views` matter.
+  AddConfigFlags(command, &flags->config, QualityOptionSchema());
+  command->add_flag("--quiet", flags->quiet, "Only the verdict line (and errors) on stderr");
   command->callback([flags, exit_code] { *exit_code = RunReport(*flags); });
 }
 

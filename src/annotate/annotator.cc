@@ -254,10 +254,12 @@ Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,
   }
   BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/frames.csv", FramesCsv(annotation)));
   const std::string config = FormatAnnotateOptions(options);
+  const Provenance provenance = CurrentProvenance(AnnotateConfigHash(options));
   const std::string header = fmt::format(
-      "# bcot annotate: fully resolved options\n# bcot_version: {}\n# sequence: {}\n"
-      "# input_hash: {}\n",
-      BCOT_VERSION, sequence.dir, input_hash);
+      "# bcot annotate: fully resolved options\n# bcot_version: {}\n# created_utc: {}\n"
+      "# config_hash: {}\n# sequence: {}\n# input_hash: {}\n",
+      provenance.bcot_version, provenance.created_utc, provenance.config_hash, sequence.dir,
+      input_hash);
   return WriteFileAtomic(out_dir + "/config.resolved.yaml", header + config);
 }
 
@@ -281,9 +283,10 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
   BCOT_ASSIGN_OR_RETURN(const SequenceAnnotation annotation,
                         AnnotateSequence(sequence, caster, options, progress));
   BCOT_RETURN_IF_ERROR(WriteAnnotation(out_dir, sequence, options, input_hash, annotation));
-  BCOT_ASSIGN_OR_RETURN(const QualityReport quality,
+  BCOT_ASSIGN_OR_RETURN(QualityReport quality,
                         MeasureQuality(sequence, caster, annotation.rig_from_object,
                                        annotation.view_names, options.quality));
+  quality.provenance = CurrentProvenance(AnnotateConfigHash(options));
   BCOT_RETURN_IF_ERROR(
       WriteQualityFiles(out_dir, quality, sequence, caster, annotation.rig_from_object));
   AnnotationOutcome outcome;

@@ -245,6 +245,7 @@ StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_d
   const std::string config_hash = AnnotateConfigHash(options.annotate);
 
   BatchResult result;
+  result.provenance = CurrentProvenance(config_hash);
   std::vector<PendingSequence> pending;
   BatchProgress state;
   state.sequences_total = static_cast<int>(selected.size());
@@ -378,6 +379,7 @@ Status WriteBatchSummary(const std::string& out_dir, const BatchResult& result,
 }
 
 StatusOr<BatchResult> RegenerateBatchReports(const std::string& out_dir,
+                                             const std::string& config_path,
                                              const std::vector<std::string>& overrides) {
   std::error_code error;
   if (!fs::is_directory(out_dir, error)) return Status::NotFound(out_dir + ": not a directory");
@@ -399,7 +401,8 @@ StatusOr<BatchResult> RegenerateBatchReports(const std::string& out_dir,
     BatchSequenceResult entry;
     entry.relative_path = relative;
     const StatusOr<QualityReport> report =
-        RegenerateQualityReport((fs::path(out_dir) / relative).string(), "", overrides);
+        RegenerateQualityReport((fs::path(out_dir) / relative).string(), "", config_path,
+                                overrides);
     if (!report.ok()) {
       entry.outcome = BatchOutcome::kFailed;
       entry.error = report.status().message();
@@ -410,6 +413,7 @@ StatusOr<BatchResult> RegenerateBatchReports(const std::string& out_dir,
     }
     result.sequences.push_back(entry);
   }
+  result.provenance = CurrentProvenance("");
   BCOT_RETURN_IF_ERROR(WriteBatchSummary(out_dir, result, "summary"));
   return result;
 }
@@ -420,6 +424,9 @@ std::string BatchSummaryJson(const BatchResult& result) {
   for (const BatchSequenceResult& s : result.sequences) {
     if (s.outcome != BatchOutcome::kFailed) (s.accepted ? accepted : rejected) += 1;
   }
+  json["bcot_version"] = result.provenance.bcot_version;
+  json["created_utc"] = result.provenance.created_utc;
+  json["config_hash"] = result.provenance.config_hash;
   json["accepted"] = accepted;
   json["rejected"] = rejected;
   json["failed"] = result.num_failed();
@@ -473,7 +480,7 @@ std::string BatchSummaryHtml(const BatchResult& result) {
       "collapse}}td,th{{border:1px solid #ccc;padding:3px 8px}}th{{cursor:pointer;background:"
       "#eee}}tr.accepted td:nth-child(2){{background:#dfd}}tr.rejected td:nth-child(2)"
       "{{background:#fdd}}tr.failed td:nth-child(2){{background:#fc9}}</style></head><body>\n"
-      "<h1>bcot batch summary</h1><p id='counts'>{} accepted, {} rejected, {} failed of {} "
+      "<h1>bcot batch summary</h1><p class='provenance'><small>{}</small></p><p id='counts'>{} accepted, {} rejected, {} failed of {} "
       "sequences. Click a column header to sort.</p>\n<table id='summary'><thead><tr>"
       "<th>sequence</th><th>verdict</th><th>this run</th><th>worst error (px)</th><th>frames"
       "</th><th>bad frame-views</th><th>cannot "
@@ -500,7 +507,8 @@ std::string BatchSummaryHtml(const BatchResult& result) {
       "  }});\n"
       "  document.body.setAttribute('data-report-ready', 'yes');\n"
       "}})();\n</script>\n</body></html>\n",
-      accepted, rejected, result.num_failed(), result.sequences.size(), rows);
+      HtmlEscape(FormatProvenance(result.provenance)), accepted, rejected, result.num_failed(),
+      result.sequences.size(), rows);
 }
 
 }  // namespace bcot

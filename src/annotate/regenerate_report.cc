@@ -1,6 +1,7 @@
 #include "bcot/annotate/regenerate_report.h"
 
 #include "bcot/annotate/annotate_options.h"
+#include "bcot/annotate/annotator.h"
 #include "bcot/annotate/done_file.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/quality/quality_files.h"
@@ -10,6 +11,7 @@ namespace bcot {
 
 StatusOr<QualityReport> RegenerateQualityReport(const std::string& annotation_dir,
                                                 const std::string& sequence_dir,
+                                                const std::string& config_path,
                                                 const std::vector<std::string>& overrides) {
   // Only a finished annotation is reported on: DONE says the poses and the config beside them
   // belong together, and records the sequence they were solved from.
@@ -18,8 +20,10 @@ StatusOr<QualityReport> RegenerateQualityReport(const std::string& annotation_di
   if (dir.empty()) {
     return Status::InvalidInput(annotation_dir + "/DONE: records no sequence; pass --sequence");
   }
-  BCOT_ASSIGN_OR_RETURN(const AnnotateOptions options,
-                        ReadAnnotateOptions(annotation_dir + "/config.resolved.yaml", overrides));
+  BCOT_ASSIGN_OR_RETURN(
+      const AnnotateOptions options,
+      ReadAnnotateOptions(
+          config_path.empty() ? annotation_dir + "/config.resolved.yaml" : config_path, overrides));
   BCOT_ASSIGN_OR_RETURN(const Sequence sequence, LoadSequence(dir, /*require_init_pose=*/false));
   BCOT_ASSIGN_OR_RETURN(const std::vector<Eigen::Isometry3d> rig_from_object,
                         ReadPoseFile(annotation_dir + "/rig_from_object.txt"));
@@ -29,6 +33,7 @@ StatusOr<QualityReport> RegenerateQualityReport(const std::string& annotation_di
   BCOT_ASSIGN_OR_RETURN(
       QualityReport report,
       MeasureQuality(sequence, caster, rig_from_object, options.views.cameras, options.quality));
+  report.provenance = CurrentProvenance(AnnotateConfigHash(options));
   BCOT_RETURN_IF_ERROR(
       WriteQualityFiles(annotation_dir, report, sequence, caster, rig_from_object));
   return report;

@@ -1,4 +1,5 @@
 #include "bcot/capture/calibration_options.h"
+#include "bcot/core/version.h"
 
 #include <fmt/format.h>
 
@@ -109,7 +110,7 @@ StatusOr<CalibrationOptions> ReadCalibrationOptions(const std::string& path,
 
 std::string FormatCalibrationOptions(const CalibrationOptions& options) {
   return CalibrationOptionSchema().Emit(
-      options, {"bcot calibrate: fully resolved options (bcot " BCOT_VERSION ")"});
+      options, {fmt::format("bcot {}: fully resolved options (bcot {})", "calibrate", BcotVersion())});
 }
 
 }  // namespace bcot

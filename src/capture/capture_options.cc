@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "bcot/core/yaml_util.h"
+#include "bcot/core/version.h"
 #include "config_util.h"
 
 namespace bcot {
@@ -135,7 +136,7 @@ StatusOr<CaptureOptions> ReadCaptureOptions(const std::string& path,
 
 std::string FormatCaptureOptions(const CaptureOptions& o) {
   const auto b = [](bool value) { return value ? "true" : "false"; };
-  std::string y = "# bcot capture: fully resolved options (bcot " BCOT_VERSION ")\n";
+  std::string y = fmt::format("# bcot capture: fully resolved options (bcot {})\n", BcotVersion());
   y += fmt::format("aravis:\n  enable_fake_interface: {}\n  num_buffers: {}\n",
                    b(o.aravis.enable_fake_interface), o.aravis.num_buffers);
   y += fmt::format("trigger:\n  mode: {}\n  source: {}\n", FormatYamlString(o.trigger.mode),

@@ -9,6 +9,7 @@
 
 #include "bcot/core/file_util.h"
 #include "bcot/core/html.h"
+#include "bcot/core/version.h"
 
 namespace bcot {
 namespace {
@@ -153,7 +154,7 @@ std::string FormatReportJson(const EvalReport& report) {
   for (const EvalGroup& group : report.per_scene) scenes.push_back(GroupJson(group));
   nlohmann::json objects = nlohmann::json::array();
   for (const EvalGroup& group : report.per_object) objects.push_back(GroupJson(group));
-  nlohmann::json root = {{"mode", report.mode},           {"bcot_version", BCOT_VERSION},
+  nlohmann::json root = {{"mode", report.mode},           {"bcot_version", BcotVersion()},
                          {"columns", kMetricColumnNames}, {"all", GroupJson(report.overall)},
                          {"per_scene", scenes},           {"per_object", objects}};
   return root.dump(2) + "\n";

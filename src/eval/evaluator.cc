@@ -15,6 +15,7 @@
 #include "bcot/core/yaml_util.h"
 #include "bcot/eval/bcot_layout.h"
 #include "bcot/eval/rbot_layout.h"
+#include "bcot/core/version.h"
 
 namespace bcot {
 namespace {
@@ -88,7 +89,7 @@ StatusOr<EvalOptions> ReadEvalOptions(const std::string& path,
 
 std::string FormatEvalOptions(const EvalOptions& options) {
   return EvalOptionSchema().Emit(options,
-                                 {"bcot eval: fully resolved options (bcot " BCOT_VERSION ")"});
+                                 {fmt::format("bcot {}: fully resolved options (bcot {})", "eval", BcotVersion())});
 }
 
 StatusOr<std::vector<BenchmarkSequence>> LoadBenchmark(const std::string& root,

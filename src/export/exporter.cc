@@ -17,6 +17,7 @@
 #include "bcot/eval/bcot_layout.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/mesh_writer.h"
+#include "bcot/core/version.h"
 
 namespace bcot {
 namespace {
@@ -138,7 +139,7 @@ StatusOr<ExportOptions> ReadExportOptions(const std::string& path,
 
 std::string FormatExportOptions(const ExportOptions& options) {
   return ExportOptionSchema().Emit(options,
-                                   {"bcot export: fully resolved options (bcot " BCOT_VERSION ")"});
+                                   {fmt::format("bcot {}: fully resolved options (bcot {})", "export", BcotVersion())});
 }
 
 StatusOr<ExportSummary> ExportToBcot(const std::string& sequence_dir,
@@ -271,10 +272,10 @@ StatusOr<ExportSummary> ExportToBcot(const std::string& sequence_dir,
   summary.model_path = BcotModelPath(out_root, object);
   BCOT_RETURN_IF_ERROR(WriteFileAtomic(
       summary.model_path,
-      FormatObjMesh(mesh, fmt::format("{}: written by bcot export (bcot " BCOT_VERSION
-                                      "), units mm, object template frame\n"
-                                      "{} vertices, {} triangles",
-                                      object, mesh.vertices().size(), mesh.triangles().size()))));
+      FormatObjMesh(mesh, fmt::format("{}: written by bcot export (bcot {}), units mm, object "
+                                      "template frame\n{} vertices, {} triangles",
+                                      object, BcotVersion(), mesh.vertices().size(),
+                                      mesh.triangles().size()))));
   summary.width = exports[0].exported.width;
   summary.height = exports[0].exported.height;
   return summary;

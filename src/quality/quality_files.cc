@@ -99,6 +99,9 @@ StatusOr<std::string> Thumbnail(const RayCaster& caster, const Camera& camera,
 
 std::string QualityJson(const QualityReport& report) {
   nlohmann::ordered_json json;
+  json["bcot_version"] = report.provenance.bcot_version;
+  json["created_utc"] = report.provenance.created_utc;
+  json["config_hash"] = report.provenance.config_hash;
   json["sequence"] = report.sequence_dir;
   json["verdict"] = report.accepted ? "accepted" : "rejected";
   json["reasons"] = report.reasons;
@@ -173,8 +176,9 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
       "figure{{display:inline-block;margin:6px}}figcaption{{font-size:12px}}"
       "table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:3px 8px}}"
       "</style></head><body>\n<h1>Quality report</h1><p>Sequence: <code>{0}</code>, {1} frames, "
-      "views: {2}</p>\n",
-      HtmlEscape(report.sequence_dir), report.frames.size(), report.view_names.size());
+      "views: {2}</p>\n<p class='provenance'><small>{3}</small></p>\n",
+      HtmlEscape(report.sequence_dir), report.frames.size(), report.view_names.size(),
+      HtmlEscape(FormatProvenance(report.provenance)));
   html += fmt::format("<div class='verdict {0}' id='verdict'><b>{0}</b>",
                       report.accepted ? "accepted" : "rejected");
   html += fmt::format(

@@ -1,4 +1,5 @@
 #include "bcot/synth/synth_options.h"
+#include "bcot/core/version.h"
 
 #include <fmt/format.h>
 
@@ -334,7 +335,7 @@ StatusOr<SynthOptions> ReadSynthOptions(const std::string& path,
 
 std::string FormatSynthOptions(const SynthOptions& options) {
   return SynthOptionSchema().Emit(options,
-                                  {"bcot synth: fully resolved options (bcot " BCOT_VERSION ")"});
+                                  {fmt::format("bcot {}: fully resolved options (bcot {})", "synth", BcotVersion())});
 }
 
 }  // namespace bcot

@@ -8,8 +8,10 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "bcot/annotate/annotator.h"
 #include "bcot/annotate/child_process_runner.h"
 #include "bcot/core/file_util.h"
+#include "bcot/core/version.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -163,6 +165,10 @@ TEST_F(BatchRunTest, FailureIsRecordedAndOthersFinishThenRerunSkipsOrRedoes) {
   EXPECT_FALSE(fs::exists(out + "/broken/DONE"));
   const nlohmann::json summary = nlohmann::json::parse(*ReadTextFile(out + "/summary.json"));
   EXPECT_EQ(summary["failed"], 1);
+  EXPECT_EQ(summary["bcot_version"], BcotVersion());
+  EXPECT_EQ(summary["config_hash"], AnnotateConfigHash(TrackOptions().annotate));
+  EXPECT_THAT(*ReadTextFile(out + "/summary.html"),
+              HasSubstr("bcot " + std::string(BcotVersion())));
   EXPECT_EQ(summary["sequences"][0]["verdict"], "failed");
   EXPECT_TRUE(fs::exists(out + "/summary.html"));
 
@@ -265,7 +271,7 @@ TEST_F(BatchRunTest, ReportsRegenerateWithoutSolving) {
   fs::remove(out + "/lab/s1/report.html");
   // A threshold no annotation meets: every sequence is rejected now.
   const StatusOr<BatchResult> result =
-      RegenerateBatchReports(out, {"quality.threshold_px=0.000001"});
+      RegenerateBatchReports(out, "", {"quality.threshold_px=0.000001"});
   ASSERT_TRUE(result.ok()) << result.status().message();
   ASSERT_EQ(result->sequences.size(), 2u);
   for (const BatchSequenceResult& s : result->sequences) {

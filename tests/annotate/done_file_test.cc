@@ -58,7 +58,7 @@ TEST(DoneFileTest, MissingAndMalformedFilesAreNamedErrors) {
 TEST(DoneFileTest, ReportsNeedAFinishedAnnotation) {
   test::TempDir dir;
   test::WriteText(dir.File("lab/notes.txt"), "not an annotation\n");
-  const StatusOr<BatchResult> result = RegenerateBatchReports(dir.path(), {});
+  const StatusOr<BatchResult> result = RegenerateBatchReports(dir.path(), "", {});
   EXPECT_EQ(result.status().code(), StatusCode::kNotFound);
   EXPECT_THAT(result.status().message(), HasSubstr("no finished annotation"));
   EXPECT_FALSE(std::filesystem::exists(dir.File("summary.json")));

@@ -3,9 +3,12 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
+#include "bcot/core/file_util.h"
 #include "bcot/core/status.h"
+#include "bcot/core/version.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -69,12 +72,60 @@ TEST_F(AnnotateCommandTest, TrackingRunWritesTheOutputContract) {
   }
 }
 
+// Progress into a pipe (a log): whole lines, no carriage returns. Every output header carries
+// the version, the time and the config hash of DONE. `bcot report --config` measures with
+// another file's quality options: a threshold no annotation meets is a rejection (exit 3).
+TEST_F(AnnotateCommandTest, LogProgressProvenanceAndReportConfig) {
+  test::TempDir out;
+  std::string output;
+  ASSERT_EQ(
+      test::RunCommand(test::BcotBinary() + " annotate " + dir_->File("seq") + " --out " +
+                           out.File("ann") + " --config " + test::SourcePath("configs/track.yaml"),
+                       &output),
+      0)
+      << output;
+  EXPECT_THAT(output, HasSubstr("bcot annotate: frame 3/3"));
+  EXPECT_EQ(output.find('\r'), std::string::npos) << output;
+
+  const std::string done = *ReadTextFile(out.File("ann/DONE"));
+  const std::string hash_line = done.substr(done.find("config_hash: "));
+  const std::string config_hash = hash_line.substr(13, hash_line.find('\n') - 13);
+  ASSERT_FALSE(config_hash.empty());
+  const nlohmann::json quality = nlohmann::json::parse(*ReadTextFile(out.File("ann/quality.json")));
+  EXPECT_EQ(quality["bcot_version"], BcotVersion());
+  EXPECT_EQ(quality["config_hash"], config_hash);
+  EXPECT_THAT(quality["created_utc"].get<std::string>(),
+              ::testing::MatchesRegex("[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}Z"));
+  const std::string config = *ReadTextFile(out.File("ann/config.resolved.yaml"));
+  EXPECT_THAT(config, HasSubstr("# bcot_version: " + std::string(BcotVersion())));
+  EXPECT_THAT(config, HasSubstr("# config_hash: " + config_hash));
+  EXPECT_THAT(config, HasSubstr("# created_utc: "));
+  EXPECT_THAT(*ReadTextFile(out.File("ann/report.html")),
+              HasSubstr("bcot " + std::string(BcotVersion())));
+
+  test::WriteText(out.File("strict.yaml"), "quality:\n  threshold_px: 0.000001\n");
+  EXPECT_EQ(test::RunCommand(test::BcotBinary() + " report --quiet " + out.File("ann") +
+                                 " --config " + out.File("strict.yaml"),
+                             &output),
+            kExitRejected)
+      << output;
+  EXPECT_THAT(output, HasSubstr("rejected"));
+  EXPECT_EQ(CountLines(output), 1) << output;  // --quiet: the verdict line only
+  test::WriteText(out.File("typo.yaml"), "quality:\n  treshold_px: 1\n");
+  EXPECT_EQ(test::RunCommand(test::BcotBinary() + " report " + out.File("ann") + " --config " +
+                                 out.File("typo.yaml"),
+                             &output),
+            2)
+      << output;
+  EXPECT_THAT(output, HasSubstr("treshold_px"));
+}
+
 TEST_F(AnnotateCommandTest, BadConfigValueIsAConfigError) {
   test::TempDir out;
   std::string output;
-  EXPECT_EQ(test::RunCommand(Annotate(dir_->File("seq") + " --out " + out.File("ann") +
-                                      " --set frame.rounds=0"),
-                             &output),
+  EXPECT_EQ(test::RunCommand(
+                Annotate(dir_->File("seq") + " --out " + out.File("ann") + " --set frame.rounds=0"),
+                &output),
             2);
   EXPECT_EQ(CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("frame.rounds = 0"));

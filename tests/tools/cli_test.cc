@@ -1,6 +1,7 @@
 // The `bcot` dispatcher: help, version and usage errors with the documented exit codes.
 #include <gtest/gtest.h>
 
+#include "bcot/core/version.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -19,7 +20,7 @@ TEST(CliTest, HelpListsSubcommandsAndExitsZero) {
 TEST(CliTest, VersionExitsZero) {
   std::string output;
   EXPECT_EQ(RunCommand(BcotBinary() + " --version", &output), 0);
-  EXPECT_THAT(output, HasSubstr(BCOT_VERSION));
+  EXPECT_THAT(output, HasSubstr(BcotVersion()));
 }
 
 TEST(CliTest, HelpCommandShowsTheCommandListOrOneCommand) {
@@ -41,6 +42,15 @@ TEST(CliTest, UnknownCommandIsNamedWithTheCommandList) {
   EXPECT_THAT(output, HasSubstr("unknown command 'no-such-command'"));
   EXPECT_EQ(RunCommand(BcotBinary(), &output), 2);
   EXPECT_THAT(output, HasSubstr("a command is required"));
+}
+
+TEST(CliTest, EveryCommandTakesQuiet) {
+  for (const char* command :
+       {"synth", "eval", "calibrate", "capture", "init", "annotate", "batch", "report"}) {
+    std::string output;
+    EXPECT_EQ(RunCommand(BcotBinary() + " help " + command, &output), 0) << command;
+    EXPECT_THAT(output, HasSubstr("--quiet")) << command;
+  }
 }
 
 TEST(CliTest, UsageErrorsExitTwo) {

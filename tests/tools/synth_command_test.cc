@@ -13,7 +13,9 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::string Synth(const std::string& arguments) { return test::BcotBinary() + " synth " + arguments; }
+std::string Synth(const std::string& arguments) {
+  return test::BcotBinary() + " synth " + arguments;
+}
 
 int CountLines(const std::string& text) {
   return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
@@ -29,9 +31,9 @@ TEST(SynthCommandTest, HelpExitsZero) {
 
 TEST(SynthCommandTest, MissingOutIsAUsageError) {
   std::string output;
-  EXPECT_EQ(test::RunCommand(Synth("--config " + test::SourcePath("configs/synth/demo.yaml")),
-                             &output),
-            2)
+  EXPECT_EQ(
+      test::RunCommand(Synth("--config " + test::SourcePath("configs/synth/demo.yaml")), &output),
+      2)
       << output;
 }
 

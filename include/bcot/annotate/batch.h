@@ -30,6 +30,7 @@
 #include "bcot/annotate/annotate_options.h"
 #include "bcot/annotate/annotator.h"
 #include "bcot/core/status.h"
+#include "bcot/core/version.h"
 
 namespace bcot {
 
@@ -94,6 +95,9 @@ struct BatchSequenceResult {
 
 struct BatchResult {
   std::vector<BatchSequenceResult> sequences;  // in sorted order
+  // Of the summary: this build, the time, the hash of the batch's options (empty for
+  // `bcot report` over a root, whose annotations may each have their own).
+  Provenance provenance;
   int num_failed() const;
   bool all_succeeded() const { return num_failed() == 0; }
   // 1 when a sequence failed, else kExitRejected when one was rejected, else 0.
@@ -120,10 +124,12 @@ StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_d
                                const BatchProgressCallback& progress = {});
 
 // `bcot report <batch out dir>`: RegenerateQualityReport for every annotation directory
-// under `out_dir` holding DONE (sequence paths as recorded in their config.resolved.yaml), then
+// under `out_dir` holding DONE (sequence paths as recorded in their config.resolved.yaml; options
+// from `config_path` or each one's config.resolved.yaml, plus `overrides`), then
 // summary.json / summary.html. Directories whose report fails are recorded as kFailed. kNotFound
 // (and nothing written) when no annotation directory is found.
 StatusOr<BatchResult> RegenerateBatchReports(const std::string& out_dir,
+                                             const std::string& config_path,
                                              const std::vector<std::string>& overrides);
 
 // summary.json / summary.html for `result` (paths relative to the summary's directory).

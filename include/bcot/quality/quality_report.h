@@ -67,6 +67,7 @@
 #include "bcot/core/status.h"
 #include "bcot/quality/quality_options.h"
 #include "bcot/render/ray_caster.h"
+#include "bcot/core/version.h"
 
 namespace bcot {
 
@@ -110,6 +111,9 @@ struct QualityReport {
   std::vector<ViewQualitySummary> views;
   bool accepted = true;
   std::vector<std::string> reasons;  // why rejected (empty when accepted)
+  // Stamped into quality.json and report.html; set by the caller (MeasureQuality leaves it
+  // empty: the quality layer does not know the options that produced the poses).
+  Provenance provenance;
 };
 
 // Measures every frame and view. `rig_from_object` (O_t, mm) has one pose per frame of the
