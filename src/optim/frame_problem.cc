@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -230,6 +231,114 @@ std::shared_ptr<const PoseGaussian> EdgePosterior(ceres::Problem* problem,
   return gaussian;
 }
 
+// One solve of the frame: the coarse levels L−1..1 `coarse_rounds` times each, then `rounds`
+// rounds at level 0 (see the header).
+struct Step {
+  int level;
+  int round;  // −1 on coarse levels
+};
+
+std::vector<Step> CoarseToFineSteps(const FrameProblemOptions& options) {
+  std::vector<Step> steps;
+  for (int level = options.pyramid_levels - 1; level >= 1; --level) {
+    for (int round = 0; round < options.coarse_rounds; ++round) steps.push_back({level, -1});
+  }
+  for (int round = 0; round < options.rounds; ++round) steps.push_back({0, round});
+  return steps;
+}
+
+// Linearises view `v` at `linearisation_pose` for one step: renders its silhouette, builds
+// the dense template and/or the correspondence lines (options.energy), adds their residual
+// blocks on `parameters` to `problem` and, at level 0, records their sizes in `view_summary`.
+// Empty when the view has no term at this pose (not visible, or weight 0).
+std::optional<ViewTemplate> LineariseView(const RayCaster& caster,
+                                          const FrameProblemOptions& options, const FrameView& view,
+                                          int v, int level, const LevelOptions& level_options,
+                                          const Eigen::Isometry3d& linearisation_pose,
+                                          double* parameters, ceres::Problem* problem,
+                                          FrameViewSummary* view_summary) {
+  if (view.weight == 0.0) return std::nullopt;
+  // The template reads the render's model points on its stride only.
+  const Silhouette silhouette = RenderSilhouette(
+      caster, *view.camera,
+      view.cam_from_rig * linearisation_pose * caster.mesh().objcentre_from_template(),
+      level_options.region.contour, level_options.region.stride_px);
+  const ColorModel& color_model = level == 0 && view.refine_color_model != nullptr
+                                      ? *view.refine_color_model
+                                      : *view.color_model;
+  ViewTemplate t;
+  t.view = v;
+  if (options.energy != RegionEnergy::kSparse) {
+    StatusOr<RegionTemplate> region_template =
+        BuildRegionTemplate(caster, *view.camera, view.cam_from_rig, linearisation_pose,
+                            *view.image, color_model, silhouette, level_options.region);
+    // Options were validated and the view checked by Solve: a failure here is a bug.
+    BCOT_CHECK(region_template.ok());
+    if (!region_template->pixels.empty()) {
+      t.region_template =
+          std::make_shared<const RegionTemplate>(std::move(region_template).value());
+      t.cost = level_options.cost;
+      t.cost.view_weight = view.weight;
+      const int pixel_count = static_cast<int>(t.region_template->pixels.size());
+      t.energy = std::make_unique<RegionCostFunction>(*view.camera, view.cam_from_rig,
+                                                      t.region_template, 0, pixel_count, t.cost);
+      AddRegionResidualBlocks(*view.camera, view.cam_from_rig, t.region_template, t.cost,
+                              parameters, problem);
+      if (level == 0) view_summary->pixels = pixel_count;
+    }
+  }
+  if (options.energy != RegionEnergy::kDense) {
+    StatusOr<CorrespondenceLines> lines =
+        BuildCorrespondenceLines(caster, *view.camera, view.cam_from_rig, linearisation_pose,
+                                 *view.image, color_model, silhouette, level_options.lines);
+    BCOT_CHECK(lines.ok());
+    if (!lines->lines.empty()) {
+      t.lines = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
+      t.line_weight = view.weight * level_options.lines.weight;
+      t.line_energy = std::make_unique<CorrespondenceLineCostFunction>(
+          *view.camera, view.cam_from_rig, t.lines, t.line_weight);
+      problem->AddResidualBlock(new CorrespondenceLineCostFunction(*view.camera, view.cam_from_rig,
+                                                                   t.lines, t.line_weight),
+                                nullptr, parameters);
+      if (level == 0) view_summary->lines = static_cast<int>(t.lines->lines.size());
+    }
+  }
+  if (t.energy == nullptr && t.line_energy == nullptr) return std::nullopt;
+  return t;
+}
+
+// The energy of every view and their total at `parameters` (the end of a round).
+void RecordEnergies(const std::vector<ViewTemplate>& templates, const double* parameters,
+                    FrameSummary* summary) {
+  summary->final_energy = 0.0;
+  for (const ViewTemplate& t : templates) {
+    const double energy = t.Energy(parameters);
+    summary->views[t.view].energy = energy;
+    summary->final_energy += energy;
+  }
+}
+
+// The views' linearisations of a round, for the temporal window.
+std::vector<ViewLinearisation> LinearisationsOf(const std::vector<FrameView>& views,
+                                                const std::vector<ViewTemplate>& templates) {
+  std::vector<ViewLinearisation> linearisations;
+  for (const ViewTemplate& t : templates) {
+    linearisations.push_back({*views[t.view].camera, views[t.view].cam_from_rig, t.region_template,
+                              t.cost, t.lines, t.line_weight, nullptr});
+  }
+  return linearisations;
+}
+
+// Records how far a round moved the pose; true when both motions are below the round
+// tolerances (the frame has converged).
+bool RecordRoundMotion(const FrameProblemOptions& options, const Eigen::Isometry3d& round_start,
+                       const Eigen::Isometry3d& round_end, FrameSummary* summary) {
+  summary->last_round_rotation_deg = RotationDistanceDeg(round_start.linear(), round_end.linear());
+  summary->last_round_translation_mm = (round_end.translation() - round_start.translation()).norm();
+  return summary->last_round_rotation_deg < options.round_tolerance_deg &&
+         summary->last_round_translation_mm < options.round_tolerance_mm;
+}
+
 }  // namespace
 
 FrameProblem::FrameProblem(const RayCaster& caster, const FrameProblemOptions& options)
@@ -251,8 +360,6 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
   summary.views.resize(views.size());
   const Eigen::Isometry3d start = *rig_from_objcentre;
   PoseParameters x = ToPoseParameters(start);
-  const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
-
   if (linearisations != nullptr) linearisations->clear();
   auto fail = [&](FrameTermination termination, std::string message) {
     if (linearisations != nullptr) linearisations->clear();
@@ -262,19 +369,8 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
     return summary;
   };
 
-  // Coarse levels L−1..1 once, then the rounds at level 0 (see the header).
-  struct Step {
-    int level;
-    int round;  // −1 on coarse levels
-  };
-  std::vector<Step> steps;
-  for (int level = options_.pyramid_levels - 1; level >= 1; --level) {
-    for (int round = 0; round < options_.coarse_rounds; ++round) steps.push_back({level, -1});
-  }
-  for (int round = 0; round < options_.rounds; ++round) steps.push_back({0, round});
-
   summary.termination = FrameTermination::kMaxRounds;
-  for (const Step& step : steps) {
+  for (const Step& step : CoarseToFineSteps(options_)) {
     const std::string where = step.round < 0 ? fmt::format("level {}", step.level)
                                              : fmt::format("round {}", step.round + 1);
     const LevelOptions level_options = OptionsAtLevel(options_, step.level);
@@ -282,54 +378,10 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
     std::vector<ViewTemplate> templates;
     ceres::Problem problem;
     for (size_t v = 0; v < views.size(); ++v) {
-      const FrameView& view = views[v];
-      if (view.weight == 0.0) continue;
-      // The template reads the render's model points on its stride only.
-      const Silhouette silhouette = RenderSilhouette(
-          caster_, *view.camera, view.cam_from_rig * linearisation_pose * objcentre_from_template,
-          level_options.region.contour, level_options.region.stride_px);
-      const ColorModel& color_model = step.level == 0 && view.refine_color_model != nullptr
-                                          ? *view.refine_color_model
-                                          : *view.color_model;
-      ViewTemplate t;
-      t.view = static_cast<int>(v);
-      if (options_.energy != RegionEnergy::kSparse) {
-        StatusOr<RegionTemplate> region_template =
-            BuildRegionTemplate(caster_, *view.camera, view.cam_from_rig, linearisation_pose,
-                                *view.image, color_model, silhouette, level_options.region);
-        // Options were validated and the view checked above: a failure here is a bug.
-        BCOT_CHECK(region_template.ok());
-        if (!region_template->pixels.empty()) {
-          t.region_template =
-              std::make_shared<const RegionTemplate>(std::move(region_template).value());
-          t.cost = level_options.cost;
-          t.cost.view_weight = view.weight;
-          const int pixel_count = static_cast<int>(t.region_template->pixels.size());
-          t.energy = std::make_unique<RegionCostFunction>(
-              *view.camera, view.cam_from_rig, t.region_template, 0, pixel_count, t.cost);
-          AddRegionResidualBlocks(*view.camera, view.cam_from_rig, t.region_template, t.cost,
-                                  x.data(), &problem);
-          if (step.level == 0) summary.views[v].pixels = pixel_count;
-        }
-      }
-      if (options_.energy != RegionEnergy::kDense) {
-        StatusOr<CorrespondenceLines> lines =
-            BuildCorrespondenceLines(caster_, *view.camera, view.cam_from_rig, linearisation_pose,
-                                     *view.image, color_model, silhouette, level_options.lines);
-        BCOT_CHECK(lines.ok());
-        if (!lines->lines.empty()) {
-          t.lines = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
-          t.line_weight = view.weight * level_options.lines.weight;
-          t.line_energy = std::make_unique<CorrespondenceLineCostFunction>(
-              *view.camera, view.cam_from_rig, t.lines, t.line_weight);
-          problem.AddResidualBlock(new CorrespondenceLineCostFunction(
-                                       *view.camera, view.cam_from_rig, t.lines, t.line_weight),
-                                   nullptr, x.data());
-          if (step.level == 0) summary.views[v].lines = static_cast<int>(t.lines->lines.size());
-        }
-      }
-      if (t.energy == nullptr && t.line_energy == nullptr) continue;
-      templates.push_back(std::move(t));
+      std::optional<ViewTemplate> t =
+          LineariseView(caster_, options_, views[v], static_cast<int>(v), step.level, level_options,
+                        linearisation_pose, x.data(), &problem, &summary.views[v]);
+      if (t.has_value()) templates.push_back(std::move(*t));
     }
     if (templates.empty()) {
       return fail(FrameTermination::kNotVisible, where + ": the object is outside every view");
@@ -346,30 +398,13 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
     }
     if (step.round < 0) continue;
 
-    summary.final_energy = 0.0;
-    for (const ViewTemplate& t : templates) {
-      const double energy = t.Energy(x.data());
-      summary.views[t.view].energy = energy;
-      summary.final_energy += energy;
-    }
+    RecordEnergies(templates, x.data(), &summary);
     if (!std::isfinite(summary.final_energy)) {
       return fail(FrameTermination::kSolverFailure, where + ": the energy is not finite");
     }
     summary.rounds = step.round + 1;
-    if (linearisations != nullptr) {
-      linearisations->clear();
-      for (const ViewTemplate& t : templates) {
-        linearisations->push_back({*views[t.view].camera, views[t.view].cam_from_rig,
-                                   t.region_template, t.cost, t.lines, t.line_weight, nullptr});
-      }
-    }
-    const Eigen::Isometry3d round_end = FromPoseParameters(x.data());
-    summary.last_round_rotation_deg =
-        RotationDistanceDeg(linearisation_pose.linear(), round_end.linear());
-    summary.last_round_translation_mm =
-        (round_end.translation() - linearisation_pose.translation()).norm();
-    if (summary.last_round_rotation_deg < options_.round_tolerance_deg &&
-        summary.last_round_translation_mm < options_.round_tolerance_mm) {
+    if (linearisations != nullptr) *linearisations = LinearisationsOf(views, templates);
+    if (RecordRoundMotion(options_, linearisation_pose, FromPoseParameters(x.data()), &summary)) {
       summary.termination = FrameTermination::kConverged;
       break;
     }
