@@ -2,8 +2,7 @@
 # Builds the libFuzzer harnesses (tests/fuzz/: rig.yaml, object.yaml, pose files, K.txt, the
 # annotate config, OBJ meshes) with clang, AddressSanitizer and UBSan into build-fuzz/, and runs
 # each for SECONDS (default 20) on a copy of its seed corpus (tests/fuzz/corpus/<target>/).
-#   scripts/fuzz.sh [SECONDS] [ctest args instead of the default -L '^fuzz$', e.g. -R mesh or
-#                   -L fuzz_yaml for the YAML parsers (see tests/fuzz/CMakeLists.txt)]
+#   scripts/fuzz.sh [SECONDS] [ctest args instead of the default -L '^fuzz$', e.g. -R mesh]
 # Prints the executions per target; a crash fails and leaves its input in
 # build-fuzz/tests/fuzz/runs/<target>/crash-*, which then belongs in the corpus and a
 # regression test. Needs clang and libclang-rt-14-dev (scripts/setup.sh installs them).

@@ -1,12 +1,14 @@
 #include "bcot/core/yaml_util.h"
 
 #include <fmt/format.h>
+#include <yaml-cpp/eventhandler.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -14,6 +16,47 @@
 
 namespace bcot {
 namespace {
+
+// Records where each document of a YAML stream starts; the events inside are ignored.
+class DocumentStarts : public YAML::EventHandler {
+ public:
+  std::vector<YAML::Mark> marks;
+
+  void OnDocumentStart(const YAML::Mark& mark) override { marks.push_back(mark); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+// The number of documents in `text`, counted up to two (enough to tell one from several), and
+// where the second starts. Not YAML::LoadAll: on some malformed input (a lone ',' is one)
+// yaml-cpp 0.7's parser hands out the same document again and again without consuming input,
+// so LoadAll never returns and its memory grows without bound. A document that starts where
+// the previous one did is that stall, reported as a syntax error. Throws YAML::Exception.
+StatusOr<int> CountYamlDocuments(const std::string& text, const std::string& source_name,
+                                 StatusCode code, YAML::Mark* second_start) {
+  std::istringstream stream(text);
+  YAML::Parser parser(stream);
+  DocumentStarts starts;
+  while (starts.marks.size() < 2 && parser.HandleNextDocument(starts)) {
+    const size_t n = starts.marks.size();
+    if (n == 2 && starts.marks[1].pos == starts.marks[0].pos) {
+      return Status(
+          code, fmt::format("{}:{}: YAML syntax error: unexpected text at column {}", source_name,
+                            starts.marks[1].line + 1, starts.marks[1].column + 1));
+    }
+  }
+  if (starts.marks.size() == 2) *second_start = starts.marks[1];
+  return static_cast<int>(starts.marks.size());
+}
 
 // yaml-cpp marks 0-based lines; a node built in code (e.g. by an override) has no mark.
 bool HasMark(const YAML::Node& node) {
@@ -260,11 +303,15 @@ Status ApplyOneOverride(const std::string& override_text, YAML::Node* root) {
 
   YAML::Node value;
   try {
-    std::vector<YAML::Node> documents = YAML::LoadAll(value_text);
-    if (documents.size() != 1) return fail("value must be a single YAML value");
-    const Status size = CheckYamlSize(documents[0], "value", StatusCode::kInvalidConfig);
+    YAML::Mark second_start;
+    const StatusOr<int> documents =
+        CountYamlDocuments(value_text, "value", StatusCode::kInvalidConfig, &second_start);
+    if (!documents.ok()) return fail(documents.status().message());
+    if (*documents != 1) return fail("value must be a single YAML value");
+    const YAML::Node document = YAML::Load(value_text);
+    const Status size = CheckYamlSize(document, "value", StatusCode::kInvalidConfig);
     if (!size.ok()) return fail(size.message());
-    value = WithoutMarks(documents[0]);
+    value = WithoutMarks(document);
   } catch (const YAML::Exception& error) {
     return fail(fmt::format("value '{}' is not valid YAML: {}", value_text, error.msg));
   }
@@ -299,14 +346,17 @@ Status ApplyOneOverride(const std::string& override_text, YAML::Node* root) {
 StatusOr<YAML::Node> ParseYaml(const std::string& text, const std::string& source_name,
                                StatusCode code) {
   try {
-    std::vector<YAML::Node> documents = YAML::LoadAll(text);
-    if (documents.empty()) return YAML::Node(YAML::NodeType::Null);
-    if (documents.size() > 1) {
-      return Status(code, fmt::format("{}: {} YAML documents ('---'), expected one",
-                                      YamlWhere(source_name, documents[1]), documents.size()));
+    YAML::Mark second_start;
+    BCOT_ASSIGN_OR_RETURN(const int documents,
+                          CountYamlDocuments(text, source_name, code, &second_start));
+    if (documents == 0) return YAML::Node(YAML::NodeType::Null);
+    if (documents > 1) {
+      return Status(code, fmt::format("{}:{}: more than one YAML document ('---'), expected one",
+                                      source_name, second_start.line + 1));
     }
-    BCOT_RETURN_IF_ERROR(CheckYamlSize(documents[0], source_name, code));
-    return documents[0];
+    YAML::Node document = YAML::Load(text);
+    BCOT_RETURN_IF_ERROR(CheckYamlSize(document, source_name, code));
+    return document;
   } catch (const YAML::Exception& error) {
     const std::string where =
         error.mark.is_null() ? source_name : fmt::format("{}:{}", source_name, error.mark.line + 1);
