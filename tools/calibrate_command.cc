@@ -19,6 +19,7 @@ struct CalibrateFlags {
   ConfigFlags config;
   std::string images_dir;
   std::string out_dir;
+  bool overwrite = false;
   bool quiet = false;
 };
 
@@ -34,6 +35,12 @@ int RunCalibrate(const CalibrateFlags& flags) {
   if (!options.ok()) {
     PrintError("calibrate", options.status().message());
     return options.status().ExitCode();
+  }
+  // Checked before the (slow) board search: a calibration is replaced only when asked to.
+  std::error_code error;
+  if (!flags.overwrite && std::filesystem::exists(flags.out_dir + "/rig.yaml", error)) {
+    PrintError("calibrate", flags.out_dir + "/rig.yaml exists; pass --overwrite to replace it");
+    return 2;
   }
   CalibrationProgress progress;
   if (!flags.quiet) {
@@ -73,6 +80,8 @@ void AddCalibrateCommand(CLI::App& app, int* exit_code) {
                    "Output folder for rig.yaml, calibration_report.csv, "
                    "calibrate.resolved.yaml")
       ->required();
+  command->add_flag("--overwrite", flags->overwrite,
+                    "Replace the rig.yaml of an earlier calibration in --out");
   command->add_flag("--quiet", flags->quiet, "No progress on stderr");
   command->callback([flags, exit_code] { *exit_code = RunCalibrate(*flags); });
 }

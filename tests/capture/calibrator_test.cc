@@ -204,8 +204,7 @@ TEST_F(SyntheticCalibrationTest, MissingFolderOrCameraImagesAreNotFound) {
 
 // OpenCV's real stereo sample: 13 pairs of 640×480, 9×6 inner corners.
 TEST(StereoSampleCalibrationTest, CalibratesTheRealStereoPairs) {
-  const std::string images = test::SharedDataPath("stereo_chessboard");
-  if (images.empty()) GTEST_SKIP() << "shared data (stereo_chessboard) not available";
+  const std::string images = test::SourcePath("data/stereo_chessboard");
   CalibrationOptions options;
   options.input.images_dir = images;
   options.input.cameras = {"left", "right"};

@@ -62,23 +62,25 @@ TEST(CalibrateCommandTest, DataErrorsExitOneNamingTheFile) {
   EXPECT_THAT(output, HasSubstr("left01.png"));
 }
 
+// The README's example: the bundled sample, then a second run that must not replace the
+// calibration silently.
 TEST(CalibrateCommandTest, CalibratesTheStereoSample) {
-  const std::string images = test::SharedDataPath("stereo_chessboard");
-  if (images.empty()) GTEST_SKIP() << "shared data (stereo_chessboard) not available";
+  const std::string images = test::SourcePath("data/stereo_chessboard");
   test::TempDir dir;
+  const std::string command =
+      Bcot("calibrate --config " + test::SourcePath("configs/calibrate.yaml") + " --images-dir " +
+           images + " --out " + dir.File("out"));
   std::string output;
-  ASSERT_EQ(
-      test::RunCommand(Bcot("calibrate --config " + test::SourcePath("configs/calibrate.yaml") +
-                            " --images-dir " + images + " --out " + dir.File("out")),
-                       &output),
-      0)
-      << output;
+  ASSERT_EQ(test::RunCommand(command, &output), 0) << output;
   EXPECT_THAT(output, HasSubstr("stereo RMS"));
   const StatusOr<Rig> rig = ReadRigYaml(dir.File("out/rig.yaml"));
   ASSERT_TRUE(rig.ok()) << rig.status().message();
   EXPECT_EQ(rig->size(), 2);
   EXPECT_TRUE(std::filesystem::exists(dir.File("out/calibration_report.csv")));
   EXPECT_TRUE(std::filesystem::exists(dir.File("out/calibrate.resolved.yaml")));
+  EXPECT_EQ(test::RunCommand(command, &output), 2) << output;
+  EXPECT_THAT(output, HasSubstr("--overwrite"));
+  EXPECT_EQ(test::RunCommand(command + " --overwrite --quiet", &output), 0) << output;
 }
 
 TEST(CaptureCommandTest, WithoutAravisTheMessageSaysSo) {
