@@ -22,6 +22,15 @@ std::string JsonNumber(double value) {
 }
 
 // The SVG plot of one view's median and p90 over time, with the threshold line.
+// The step between labelled frame ticks: 1, 2 or 5 × 10^k, the smallest giving at most ten.
+int FrameTickStep(int num_frames) {
+  for (int scale = 1;; scale *= 10) {
+    for (int factor : {1, 2, 5}) {
+      if (num_frames <= 10 * factor * scale) return factor * scale;
+    }
+  }
+}
+
 std::string ViewPlot(const QualityReport& report, size_t v) {
   const int width = 760, height = 180, left = 40, bottom = 20;
   const int num_frames = static_cast<int>(report.frames.size());
@@ -55,16 +64,52 @@ std::string ViewPlot(const QualityReport& report, size_t v) {
   for (int f = 0; f < num_frames; ++f) {
     const ViewFrameQuality& q = report.frames[f][v];
     if (q.bad || !q.verifiable) {
-      svg += fmt::format("<rect x='{:.1f}' y='5' width='2' height='{}' fill='{}'/>", x_of(f) - 1,
-                         height - bottom, q.bad ? "#f4b4b4" : "#c8c8c8");
+      svg += fmt::format(
+          "<rect x='{:.1f}' y='5' width='2' height='{}' fill='{}'><title>frame {}: "
+          "{}</title></rect>",
+          x_of(f) - 1, height - bottom, q.bad ? "#f4b4b4" : "#c8c8c8", f,
+          q.bad ? fmt::format("bad, p90 {:.2f} px", q.p90_px) : std::string("cannot tell"));
     }
   }
   svg += polyline(false, "#2a6");
   svg += polyline(true, "#36c");
-  svg += fmt::format("<text x='{}' y='{}' font-size='10'>frame 0</text>", left, height + 8);
-  svg += fmt::format("<text x='{}' y='{}' font-size='10' text-anchor='end'>frame {}</text>",
-                     width - 10, height + 8, std::max(0, num_frames - 1));
+  // Frame ticks at a round step (1, 2 or 5 × 10^k, about ten of them), labelled by frame index.
+  const int step = FrameTickStep(num_frames);
+  for (int f = 0; f < num_frames; f += step) {
+    svg += fmt::format(
+        "<line x1='{0:.1f}' x2='{0:.1f}' y1='{1}' y2='{2}' stroke='#888'/>"
+        "<text x='{0:.1f}' y='{3}' font-size='10' text-anchor='middle'>{4}</text>",
+        x_of(f), height - bottom + 5, height - bottom + 9, height + 8, f);
+  }
+  svg += fmt::format("<text x='{}' y='{}' font-size='10' text-anchor='end'>frame</text>", left - 4,
+                     height + 8);
   return svg + "</svg>";
+}
+
+// "3, 7–9, 12": frame indices (sorted) as ranges.
+std::string FrameRanges(const std::vector<int>& frames) {
+  std::string text;
+  for (size_t i = 0; i < frames.size();) {
+    size_t j = i;
+    while (j + 1 < frames.size() && frames[j + 1] == frames[j] + 1) ++j;
+    text += (text.empty() ? "" : ", ") +
+            (j == i ? std::to_string(frames[i]) : fmt::format("{}–{}", frames[i], frames[j]));
+    i = j + 1;
+  }
+  return text;
+}
+
+// The frames of view `v` that are bad, and those that cannot be told, as lines for the report.
+std::string BadFrameList(const QualityReport& report, size_t v) {
+  std::vector<int> bad, unverified;
+  for (size_t f = 0; f < report.frames.size(); ++f) {
+    const ViewFrameQuality& q = report.frames[f][v];
+    if (q.bad) bad.push_back(static_cast<int>(f));
+    if (!q.bad && !q.verifiable) unverified.push_back(static_cast<int>(f));
+  }
+  return fmt::format("<p class='bad-frames'>Bad frames ({}): {}<br>Cannot tell ({}): {}</p>\n",
+                     bad.size(), bad.empty() ? "none" : FrameRanges(bad), unverified.size(),
+                     unverified.empty() ? "none" : FrameRanges(unverified));
 }
 
 // A PNG thumbnail (base64) of one frame-view with the annotated contour drawn.
@@ -224,9 +269,9 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
     const RigCamera& camera = sequence.rig[rig_index];
     html += fmt::format(
         "<h2>View {}</h2><p>Reprojection error over time: <span style='color:#2a6'>median</span>, "
-        "<span style='color:#36c'>p90</span>, threshold dashed, bad frames shaded.</p>\n{}\n"
-        "<div class='worst'>",
-        HtmlEscape(report.view_names[v]), ViewPlot(report, v));
+        "<span style='color:#36c'>p90</span>, threshold dashed, bad frames shaded red, frames "
+        "that cannot be told grey (hover for the frame).</p>\n{}\n{}<div class='worst'>",
+        HtmlEscape(report.view_names[v]), ViewPlot(report, v), BadFrameList(report, v));
     for (int frame : report.views[v].worst_frames) {
       BCOT_ASSIGN_OR_RETURN(
           const std::string png,

@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -363,6 +364,21 @@ TEST_F(QualityOnSynthTest, WritesJsonCsvAndSelfContainedHtml) {
   EXPECT_NEAR(in_memory.worst_px, verdict->worst_px, 1e-9);
   EXPECT_EQ(verdict->bad_frame_views, 0);
   EXPECT_EQ(verdict->unverified_frame_views, 0);
+  EXPECT_THAT(html, HasSubstr("Bad frames (0): none"));
+
+  // The bad frames of a view are listed as ranges of frame indices, each shaded with a tooltip,
+  // and the time axis carries frame ticks (6 frames: every frame).
+  QualityReport marked = *report;
+  for (int f : {1, 2, 4}) marked.frames[f][0].bad = true;
+  marked.frames[5][0].verifiable = false;
+  const StatusOr<std::string> marked_html = QualityHtml(marked, *sequence, caster, *gt);
+  ASSERT_TRUE(marked_html.ok()) << marked_html.status().message();
+  EXPECT_THAT(*marked_html, HasSubstr("Bad frames (3): 1–2, 4"));
+  EXPECT_THAT(*marked_html, HasSubstr("Cannot tell (1): 5"));
+  EXPECT_THAT(*marked_html, HasSubstr("<title>frame 4: bad, p90"));
+  for (int f = 0; f < 6; ++f) {
+    EXPECT_THAT(*marked_html, HasSubstr(fmt::format("text-anchor='middle'>{}</text>", f)));
+  }
 }
 
 // A frame-view without the object cannot be told: it is not bad, it is counted apart, and the
