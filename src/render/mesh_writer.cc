@@ -5,16 +5,40 @@
 #include <sstream>
 
 namespace bcot {
+namespace {
 
-std::string FormatObjMesh(const Mesh& mesh, const std::string& comment) {
+// Each line of `comment` prefixed with `prefix`, one per line.
+std::string CommentLines(const std::string& comment, const std::string& prefix) {
   std::string text;
   std::istringstream lines(comment);
-  for (std::string line; std::getline(lines, line);) text += "# " + line + "\n";
+  for (std::string line; std::getline(lines, line);) text += prefix + line + "\n";
+  return text;
+}
+
+}  // namespace
+
+std::string FormatObjMesh(const Mesh& mesh, const std::string& comment) {
+  std::string text = CommentLines(comment, "# ");
   for (const Eigen::Vector3f& v : mesh.vertices()) {
     text += fmt::format("v {} {} {}\n", v.x(), v.y(), v.z());
   }
   for (const Eigen::Vector3i& t : mesh.triangles()) {
     text += fmt::format("f {} {} {}\n", t.x() + 1, t.y() + 1, t.z() + 1);
+  }
+  return text;
+}
+
+std::string FormatPlyMesh(const Mesh& mesh, const std::string& comment) {
+  std::string text = "ply\nformat ascii 1.0\n" + CommentLines(comment, "comment ");
+  text += fmt::format(
+      "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+      mesh.vertices().size(), mesh.triangles().size());
+  for (const Eigen::Vector3f& v : mesh.vertices()) {
+    text += fmt::format("{} {} {}\n", v.x(), v.y(), v.z());
+  }
+  for (const Eigen::Vector3i& t : mesh.triangles()) {
+    text += fmt::format("3 {} {} {}\n", t.x(), t.y(), t.z());
   }
   return text;
 }

@@ -10,19 +10,21 @@ namespace {
 
 using ::testing::StartsWith;
 
-TEST(MeshWriterTest, ObjTextLoadsBackToTheSameMesh) {
-  // Coordinates that need all of a float's digits.
+// A tetrahedron whose coordinates need all of a float's digits.
+Mesh PreciseTetrahedron() {
   std::vector<Eigen::Vector3f> vertices = {{0.1f, -2.5e-3f, 7.0f / 3.0f},
                                            {123.456789f, 0.0f, -1e-7f},
                                            {-33.3333f, 44.4f, 1e4f / 7.0f},
                                            {5.0f, 5.0f, 5.0f}};
   std::vector<Eigen::Vector3i> triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}};
-  const Mesh mesh = Mesh::FromArrays(vertices, triangles);
-  const std::string text = FormatObjMesh(mesh, "first line\nsecond line");
-  EXPECT_THAT(text, StartsWith("# first line\n# second line\nv "));
+  return Mesh::FromArrays(vertices, triangles);
+}
+
+// Writes `text` to `file_name`, loads it and expects `mesh` back exactly.
+void ExpectLoadsBackTo(const std::string& text, const std::string& file_name, const Mesh& mesh) {
   test::TempDir dir;
-  test::WriteText(dir.File("mesh.obj"), text);
-  const StatusOr<Mesh> read = Mesh::Load(dir.File("mesh.obj"));
+  test::WriteText(dir.File(file_name), text);
+  const StatusOr<Mesh> read = Mesh::Load(dir.File(file_name));
   ASSERT_TRUE(read.ok()) << read.status().message();
   ASSERT_EQ(read->vertices().size(), mesh.vertices().size());
   ASSERT_EQ(read->triangles().size(), mesh.triangles().size());
@@ -32,6 +34,22 @@ TEST(MeshWriterTest, ObjTextLoadsBackToTheSameMesh) {
     for (const Eigen::Vector3f& w : read->vertices()) found = found || v == w;
     EXPECT_TRUE(found) << v.transpose();
   }
+}
+
+TEST(MeshWriterTest, ObjTextLoadsBackToTheSameMesh) {
+  const Mesh mesh = PreciseTetrahedron();
+  const std::string text = FormatObjMesh(mesh, "first line\nsecond line");
+  EXPECT_THAT(text, StartsWith("# first line\n# second line\nv "));
+  ExpectLoadsBackTo(text, "mesh.obj", mesh);
+}
+
+TEST(MeshWriterTest, PlyTextLoadsBackToTheSameMesh) {
+  const Mesh mesh = PreciseTetrahedron();
+  const std::string text = FormatPlyMesh(mesh, "first line\nsecond line");
+  EXPECT_THAT(text, StartsWith("ply\nformat ascii 1.0\ncomment first line\ncomment second line\n"
+                               "element vertex 4\n"));
+  EXPECT_THAT(text, ::testing::HasSubstr("element face 4\n"));
+  ExpectLoadsBackTo(text, "mesh.ply", mesh);
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-// Writing meshes: the one Wavefront OBJ writer (synth's built-in meshes, the release export).
+// Writing meshes: the one Wavefront OBJ writer (synth's built-in meshes, the BCOT release export)
+// and the one PLY writer (the BOP export).
 #pragma once
 
 #include <string>
@@ -12,5 +13,10 @@ namespace bcot {
 // coordinate is the shortest decimal that reads back to the same float, so a mesh written and
 // loaded again is the same mesh.
 std::string FormatObjMesh(const Mesh& mesh, const std::string& comment);
+
+// ASCII PLY text of `mesh` (the format of BOP's models): "element vertex" with float x, y, z as
+// stored (mm), "element face" with a uchar-counted int list of 0-based vertex indices, and
+// `comment` as "comment" header lines. Coordinates are written like FormatObjMesh's.
+std::string FormatPlyMesh(const Mesh& mesh, const std::string& comment);
 
 }  // namespace bcot
