@@ -400,7 +400,15 @@ class OptionSchema {
   // The config file at `path` (empty = none) with `overrides` applied on top, validated.
   StatusOr<Options> Read(const std::string& path, const std::vector<std::string>& overrides,
                          OptionSources* sources_out = nullptr) const {
-    Options options;
+    return ReadOnto(Options(), path, overrides, sources_out);
+  }
+
+  // The same starting from `base` instead of the defaults (a command's preset): keys neither
+  // the file nor `overrides` set keep base's values.
+  StatusOr<Options> ReadOnto(const Options& base, const std::string& path,
+                             const std::vector<std::string>& overrides,
+                             OptionSources* sources_out = nullptr) const {
+    Options options = base;
     OptionSources sources;
     if (!path.empty()) {
       StatusOr<YAML::Node> root = LoadYamlFile(path, StatusCode::kInvalidConfig);
