@@ -15,6 +15,7 @@
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
 #include "bcot/synth/synthesizer.h"
+#include "export/coverage_frames.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -45,16 +46,7 @@ void SynthesizeSequence(const std::string& out, bool precise) {
   options.output.write_coverage = precise;
   ASSERT_TRUE(Synthesize(options, out).ok());
   if (!precise) return;
-  for (const char* camera : {"cam0", "cam1"}) {
-    for (int f = 0; f < 4; ++f) {
-      const cv::Mat gray = cv::imread(fmt::format("{}/gt/{}/coverage_{:06d}.png", out, camera, f),
-                                      cv::IMREAD_GRAYSCALE);
-      ASSERT_FALSE(gray.empty());
-      cv::Mat bgr;
-      cv::cvtColor(gray, bgr, cv::COLOR_GRAY2BGR);
-      ASSERT_TRUE(cv::imwrite(fmt::format("{}/{}/{:06d}.png", out, camera, f), bgr));
-    }
-  }
+  test::ReplaceFramesWithCoverage(out, 4);
 }
 
 class ExporterTest : public ::testing::Test {
@@ -108,7 +100,7 @@ TEST_F(ExporterPreciseTest, ExportedFramesAlignWithTheMeshAtTheExportedIntrinsic
       ExportToBcot(Sequence(), Annotation(), out.path(), options);
   ASSERT_TRUE(summary.ok()) << summary.status().message();
   EXPECT_TRUE(summary->undistorted);
-  EXPECT_EQ(summary->frames_per_camera, 2);
+  EXPECT_EQ(summary->frames.size(), 2u);
   EXPECT_EQ(summary->width, 160);
   EXPECT_EQ(summary->height, 128);
 
@@ -193,7 +185,7 @@ TEST_F(ExporterTest, UsesRigFromObjectWhenThereIsNoPerCameraPoseFile) {
   const StatusOr<ExportSummary> summary =
       ExportToBcot(Sequence(), annotation.path(), out.path(), options);
   ASSERT_TRUE(summary.ok()) << summary.status().message();
-  EXPECT_EQ(summary->frames_per_camera, 2);  // frames 0 and 3
+  EXPECT_EQ(summary->frames, (std::vector<int>{0, 3}));
   // One camera: the scene is the sequence folder's name, the object object.yaml's.
   const StatusOr<std::vector<Eigen::Isometry3d>> exported =
       ReadPoseFile(out.File("seq/knot/pose.txt"));
@@ -241,6 +233,48 @@ TEST(ExportOptionsTest, ValidateListsEveryViolation) {
   for (const char* field :
        {"frame_step = 0", "image_scale = 1.5", "cameras[1]", "object = 'a/b'"}) {
     EXPECT_THAT(status.message(), ::testing::HasSubstr(field));
+  }
+}
+
+TEST(ExportOptionsTest, DefaultsAreFullRateAndResolutionThePresetIsTheRelease) {
+  const ExportOptions defaults;
+  EXPECT_EQ(defaults.format, ExportFormat::kBcot);
+  EXPECT_EQ(defaults.frame_step, 1);
+  EXPECT_EQ(defaults.image_scale, 1.0);
+  EXPECT_TRUE(defaults.cameras.empty());
+  EXPECT_TRUE(defaults.Validate().ok());
+  StatusOr<ExportOptions> preset = ExportPreset("bcot-release");
+  ASSERT_TRUE(preset.ok());
+  EXPECT_EQ(preset->frame_step, 2);
+  EXPECT_EQ(preset->image_scale, 0.5);
+  // Keys set in a config or by --set override the preset; the others keep its values.
+  const StatusOr<ExportOptions> read = ReadExportOptions("", {"frame_step=3"}, *preset);
+  ASSERT_TRUE(read.ok()) << read.status().message();
+  EXPECT_EQ(read->frame_step, 3);
+  EXPECT_EQ(read->image_scale, 0.5);
+  preset = ExportPreset("paper");
+  EXPECT_EQ(preset.status().code(), StatusCode::kInvalidConfig);
+  EXPECT_THAT(preset.status().message(), ::testing::HasSubstr("bcot-release"));
+}
+
+TEST(ExportOptionsTest, DescribeExportIsOneLineSayingWhatIsExported) {
+  ExportSummary summary;
+  summary.cameras = {"cam0"};
+  summary.rig_cameras = 2;
+  summary.frames = {0, 2, 4};
+  summary.sequence_frames = 6;
+  summary.frame_step = 2;
+  summary.width = 640;
+  summary.height = 512;
+  summary.source_width = 1280;
+  summary.source_height = 1024;
+  summary.undistorted = true;
+  summary.scene_dirs = {"out/scene"};
+  const std::string line = DescribeExport(summary, ExportFormat::kBcot);
+  EXPECT_EQ(line.find('\n'), std::string::npos);
+  for (const char* part : {"bcot format", "3 of 6 frames", "step 2", "camera cam0 (1 of 2)",
+                           "640x512 (scaled from 1280x1024, undistorted)", "out/scene"}) {
+    EXPECT_THAT(line, ::testing::HasSubstr(part)) << line;
   }
 }
 

@@ -1,4 +1,4 @@
-// `bcot eval` and `bcot export` end to end: exit codes, one-line errors, written outputs.
+// `bcot eval` end to end: exit codes, one-line errors, written outputs.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -6,8 +6,6 @@
 #include <filesystem>
 #include <string>
 
-#include "bcot/core/pose_io.h"
-#include "bcot/synth/synthesizer.h"
 #include "eval/benchmark_test_data.h"
 #include "test_util.h"
 
@@ -66,44 +64,6 @@ TEST(EvalCommandTest, ErrorsAreOneLineWithTheRightExitCode) {
   EXPECT_EQ(CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("layout = 'ycb'"));
   EXPECT_EQ(test::RunCommand(Bcot("eval --data " + dir.File("data")), &output), 2);
-}
-
-TEST(ExportCommandTest, ExportsASyntheticSequenceAndRejectsBadOptions) {
-  test::TempDir dir;
-  SynthOptions options;
-  options.cameras.width = 160;
-  options.cameras.height = 128;
-  options.motion.num_frames = 3;
-  options.distractors.count = 0;
-  options.render.object_samples_per_axis = 1;
-  options.render.background_samples_per_axis = 1;
-  ASSERT_TRUE(Synthesize(options, dir.File("seq")).ok());
-  std::string output;
-  ASSERT_EQ(test::RunCommand(Bcot("export --sequence " + dir.File("seq") + " --annotation " +
-                                  dir.File("seq/gt") + " --out " + dir.File("release") +
-                                  " --config " + test::SourcePath("configs/export.yaml")),
-                             &output),
-            0)
-      << output;
-  EXPECT_TRUE(std::filesystem::exists(dir.File("release/models/knot.obj")));
-  EXPECT_TRUE(std::filesystem::exists(dir.File("release/seq/K.txt")));
-  EXPECT_TRUE(std::filesystem::exists(dir.File("release/seq/knot/0001.png")));  // frames 0, 2
-  EXPECT_FALSE(std::filesystem::exists(dir.File("release/seq/knot/0002.png")));
-  const StatusOr<std::vector<Eigen::Isometry3d>> poses =
-      ReadPoseFile(dir.File("release/seq/knot/pose.txt"));
-  ASSERT_TRUE(poses.ok());
-  EXPECT_EQ(poses->size(), 2u);
-
-  // Exporting again needs --overwrite.
-  const std::string again = Bcot("export --sequence " + dir.File("seq") + " --annotation " +
-                                 dir.File("seq/gt") + " --out " + dir.File("release"));
-  EXPECT_EQ(test::RunCommand(again, &output), 2);
-  EXPECT_EQ(CountLines(output), 1) << output;
-  EXPECT_EQ(test::RunCommand(again + " --overwrite", &output), 0) << output;
-
-  EXPECT_EQ(test::RunCommand(again + " --set image_scale=0.3", &output), 2);
-  EXPECT_EQ(CountLines(output), 1) << output;
-  EXPECT_THAT(output, HasSubstr("image_scale = 0.3"));
 }
 
 }  // namespace
