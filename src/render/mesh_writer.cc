@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <sstream>
+#include <vector>
 
 namespace bcot {
 namespace {
@@ -13,6 +14,22 @@ std::string CommentLines(const std::string& comment, const std::string& prefix) 
   std::istringstream lines(comment);
   for (std::string line; std::getline(lines, line);) text += prefix + line + "\n";
   return text;
+}
+
+// Per-vertex normals: the area-weighted sum of the normals of the triangles around a vertex,
+// normalised; zero for a vertex of degenerate triangles only.
+std::vector<Eigen::Vector3f> VertexNormals(const Mesh& mesh) {
+  std::vector<Eigen::Vector3f> normals(mesh.vertices().size(), Eigen::Vector3f::Zero());
+  for (const Eigen::Vector3i& t : mesh.triangles()) {
+    const Eigen::Vector3f& a = mesh.vertices()[t.x()];
+    const Eigen::Vector3f twice_area_normal =
+        (mesh.vertices()[t.y()] - a).cross(mesh.vertices()[t.z()] - a);
+    for (int i = 0; i < 3; ++i) normals[t[i]] += twice_area_normal;
+  }
+  for (Eigen::Vector3f& n : normals) {
+    if (n.norm() > 0.0f) n.normalize();
+  }
+  return normals;
 }
 
 }  // namespace
@@ -32,10 +49,14 @@ std::string FormatPlyMesh(const Mesh& mesh, const std::string& comment) {
   std::string text = "ply\nformat ascii 1.0\n" + CommentLines(comment, "comment ");
   text += fmt::format(
       "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float nx\nproperty float ny\nproperty float nz\n"
       "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
       mesh.vertices().size(), mesh.triangles().size());
-  for (const Eigen::Vector3f& v : mesh.vertices()) {
-    text += fmt::format("{} {} {}\n", v.x(), v.y(), v.z());
+  const std::vector<Eigen::Vector3f> normals = VertexNormals(mesh);
+  for (size_t i = 0; i < normals.size(); ++i) {
+    const Eigen::Vector3f& v = mesh.vertices()[i];
+    text += fmt::format("{} {} {} {} {} {}\n", v.x(), v.y(), v.z(), normals[i].x(), normals[i].y(),
+                        normals[i].z());
   }
   for (const Eigen::Vector3i& t : mesh.triangles()) {
     text += fmt::format("3 {} {} {}\n", t.x(), t.y(), t.z());

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include "test_util.h"
 
 namespace bcot {
@@ -50,6 +52,22 @@ TEST(MeshWriterTest, PlyTextLoadsBackToTheSameMesh) {
                                "element vertex 4\n"));
   EXPECT_THAT(text, ::testing::HasSubstr("element face 4\n"));
   ExpectLoadsBackTo(text, "mesh.ply", mesh);
+}
+
+TEST(MeshWriterTest, PlyVertexNormalsAreUnitAndFollowTheWinding) {
+  // Two counter-clockwise triangles in the plane z = 2 (seen from +z): every normal is +z.
+  const Mesh mesh =
+      Mesh::FromArrays({{0, 0, 2}, {1, 0, 2}, {1, 1, 2}, {0, 1, 2}}, {{0, 1, 2}, {0, 2, 3}});
+  const std::string text = FormatPlyMesh(mesh, "");
+  EXPECT_THAT(text,
+              ::testing::HasSubstr("property float nx\nproperty float ny\nproperty float nz\n"));
+  std::istringstream lines(text.substr(text.find("end_header\n") + 11));
+  for (int i = 0; i < 4; ++i) {
+    Eigen::Vector3f v, n;
+    lines >> v.x() >> v.y() >> v.z() >> n.x() >> n.y() >> n.z();
+    EXPECT_TRUE(v.isApprox(mesh.vertices()[i])) << i;
+    EXPECT_TRUE(n.isApprox(Eigen::Vector3f::UnitZ())) << i << ": " << n.transpose();
+  }
 }
 
 }  // namespace

@@ -15,8 +15,10 @@ namespace bcot {
 std::string FormatObjMesh(const Mesh& mesh, const std::string& comment);
 
 // ASCII PLY text of `mesh` (the format of BOP's models): "element vertex" with float x, y, z as
-// stored (mm), "element face" with a uchar-counted int list of 0-based vertex indices, and
-// `comment` as "comment" header lines. Coordinates are written like FormatObjMesh's.
+// stored (mm) and nx, ny, nz (unit vertex normals: the area-weighted sum of the adjacent
+// triangles' normals, zero at a vertex of degenerate triangles only), "element face" with a
+// uchar-counted int list of 0-based vertex indices, and `comment` as "comment" header lines.
+// Coordinates are written like FormatObjMesh's.
 std::string FormatPlyMesh(const Mesh& mesh, const std::string& comment);
 
 }  // namespace bcot
