@@ -239,8 +239,7 @@ StatusOr<ExportSummary> ExportToBop(const std::string& sequence_dir,
                                     const std::string& annotation_dir, const std::string& out_root,
                                     const ExportOptions& options) {
   BCOT_ASSIGN_OR_RETURN(const ExportPlan plan,
-                        export_internal::PlanExport(sequence_dir, annotation_dir, options,
-                                                    /*default_all_cameras=*/true));
+                        export_internal::PlanExport(sequence_dir, annotation_dir, options));
   const bool suffixed = plan.cameras.size() > 1;
   for (const CameraPlan& camera : plan.cameras) {
     const std::string problem = export_internal::FolderNameProblem(camera.camera.name);

@@ -100,17 +100,14 @@ std::string FolderNameProblem(const std::string& name) {
 }
 
 StatusOr<ExportPlan> PlanExport(const std::string& sequence_dir, const std::string& annotation_dir,
-                                const ExportOptions& options, bool default_all_cameras) {
+                                const ExportOptions& options) {
   BCOT_RETURN_IF_ERROR(options.Validate());
   ExportPlan plan;
   BCOT_ASSIGN_OR_RETURN(plan.sequence, LoadSequence(sequence_dir, /*require_init_pose=*/false));
   BCOT_ASSIGN_OR_RETURN(plan.frames, SelectFrames(options, plan.sequence.num_frames));
   std::vector<std::string> names = options.cameras;
   if (names.empty()) {
-    for (const RigCamera& camera : plan.sequence.rig.cameras()) {
-      names.push_back(camera.camera.name);
-      if (!default_all_cameras) break;
-    }
+    for (const RigCamera& camera : plan.sequence.rig.cameras()) names.push_back(camera.camera.name);
   }
   for (const std::string& name : names) {
     BCOT_ASSIGN_OR_RETURN(CameraPlan camera,

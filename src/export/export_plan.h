@@ -36,10 +36,10 @@ struct ExportPlan {
 };
 
 // Loads the sequence and the annotation's poses and checks the options against them: camera
-// names, frame range, whole-pixel scaled sizes. `default_all_cameras`: an empty
-// options.cameras means every camera of the rig (else the first one).
+// names, frame range, whole-pixel scaled sizes. An empty options.cameras means every camera of
+// the rig.
 StatusOr<ExportPlan> PlanExport(const std::string& sequence_dir, const std::string& annotation_dir,
-                                const ExportOptions& options, bool default_all_cameras);
+                                const ExportOptions& options);
 
 // The summary fields every format fills the same way (cameras, frames, sizes).
 ExportSummary SummarizePlan(const ExportPlan& plan, const ExportOptions& options);

@@ -60,7 +60,7 @@ OptionSchema<ExportOptions>* BuildExportOptionSchema() {
       .Range(LeftOpen(0, 1));
   s->Add(
        "cameras", [](auto& o) -> auto& { return o.cameras; }, "",
-       "rig cameras to export; [] = bcot: the first only (indoor), bop: all")
+       "rig cameras to export; [] = every camera of the rig")
       .Check([](const ExportOptions& o) -> std::string {
         for (size_t i = 0; i < o.cameras.size(); ++i) {
           if (o.cameras[i].empty()) return fmt::format("must not hold an empty name ([{}])", i);
@@ -163,8 +163,7 @@ StatusOr<ExportSummary> ExportToBcot(const std::string& sequence_dir,
                                      const std::string& annotation_dir, const std::string& out_root,
                                      const ExportOptions& options) {
   BCOT_ASSIGN_OR_RETURN(const ExportPlan plan,
-                        export_internal::PlanExport(sequence_dir, annotation_dir, options,
-                                                    /*default_all_cameras=*/false));
+                        export_internal::PlanExport(sequence_dir, annotation_dir, options));
   const Sequence& sequence = plan.sequence;
   const std::string object = options.object.empty() ? sequence.object.name : options.object;
   if (!FolderNameProblem(object).empty()) {

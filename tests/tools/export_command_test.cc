@@ -55,10 +55,11 @@ TEST_F(ExportCommandTest, DefaultsAreEveryFrameFullResolutionThePresetIsTheRelea
   EXPECT_EQ(CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("bcot format: 3 of 3 frames"));
   EXPECT_THAT(output, HasSubstr("160x128 (full resolution)"));
-  EXPECT_THAT(output, HasSubstr("cam0 (1 of 2)"));
+  EXPECT_THAT(output, HasSubstr("cameras cam0,cam1 (2 of 2)"));
   EXPECT_TRUE(fs::exists(dir_.File("full/models/knot.obj")));
-  EXPECT_TRUE(fs::exists(dir_.File("full/seq/knot/0002.png")));
-  EXPECT_EQ(ImageSize(dir_.File("full/seq/knot/0000.png")), cv::Size(160, 128));
+  EXPECT_TRUE(fs::exists(dir_.File("full/seq_cam0/knot/0002.png")));
+  EXPECT_EQ(ImageSize(dir_.File("full/seq_cam0/knot/0000.png")), cv::Size(160, 128));
+  EXPECT_TRUE(fs::exists(dir_.File("full/seq_cam1/knot/0002.png")));  // every camera
 
   ASSERT_EQ(test::RunCommand(
                 Export(dir_.File("seq/gt"), dir_.File("release"), "--preset bcot-release --quiet"),
@@ -66,11 +67,11 @@ TEST_F(ExportCommandTest, DefaultsAreEveryFrameFullResolutionThePresetIsTheRelea
             0)
       << output;
   EXPECT_EQ(output, "");
-  EXPECT_TRUE(fs::exists(dir_.File("release/seq/knot/0001.png")));  // frames 0, 2
-  EXPECT_FALSE(fs::exists(dir_.File("release/seq/knot/0002.png")));
-  EXPECT_EQ(ImageSize(dir_.File("release/seq/knot/0000.png")), cv::Size(80, 64));
+  EXPECT_TRUE(fs::exists(dir_.File("release/seq_cam0/knot/0001.png")));  // frames 0, 2
+  EXPECT_FALSE(fs::exists(dir_.File("release/seq_cam0/knot/0002.png")));
+  EXPECT_EQ(ImageSize(dir_.File("release/seq_cam0/knot/0000.png")), cv::Size(80, 64));
   const StatusOr<std::vector<Eigen::Isometry3d>> poses =
-      ReadPoseFile(dir_.File("release/seq/knot/pose.txt"));
+      ReadPoseFile(dir_.File("release/seq_cam0/knot/pose.txt"));
   ASSERT_TRUE(poses.ok());
   EXPECT_EQ(poses->size(), 2u);
 
@@ -82,7 +83,7 @@ TEST_F(ExportCommandTest, DefaultsAreEveryFrameFullResolutionThePresetIsTheRelea
             0)
       << output;
   EXPECT_THAT(output, HasSubstr("2 of 3 frames"));
-  EXPECT_EQ(ImageSize(dir_.File("configured/seq/knot/0000.png")), cv::Size(160, 128));
+  EXPECT_EQ(ImageSize(dir_.File("configured/seq_cam0/knot/0000.png")), cv::Size(160, 128));
 
   // Exporting again needs --overwrite; errors are one line with the usage exit code.
   EXPECT_EQ(test::RunCommand(Export(dir_.File("seq/gt"), dir_.File("full")), &output), 2);

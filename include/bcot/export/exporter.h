@@ -58,8 +58,8 @@ struct ExportOptions {
   // Image scale factor (1280×1024 → 640×512: 0.5); (0, 1], and width·scale and height·scale
   // must be integers for every exported camera.
   double image_scale = 1.0;
-  // Cameras to export, by rig.yaml name; empty = the first camera only for BCOT (its indoor
-  // scenes), every camera of the rig for BOP.
+  // Cameras to export, by rig.yaml name; empty = every camera of the rig (the BCOT release's
+  // indoor scenes have one view: set [cam0]).
   std::vector<std::string> cameras;
   // BCOT: scene folder name; empty = the sequence folder's name. With more than one exported
   // camera each gets its own scene folder "<scene>_<camera>".
