@@ -1,4 +1,5 @@
-// bcot annotate <sequence dir> --out DIR [--config FILE] [--set section.key=value]...
+// bcot annotate <sequence dir> --out DIR [--keyframes FILE] [--frames A:B] [--config FILE]
+//               [--set section.key=value]...
 // Annotates one sequence (see bcot/annotate/annotator.h) with a progress line on stderr.
 #include <fmt/format.h>
 
@@ -21,6 +22,7 @@ struct AnnotateFlags {
   ConfigFlags config;
   std::string sequence_dir;
   std::string out_dir;
+  AnnotateInputs inputs;
   bool quiet = false;
 };
 
@@ -46,7 +48,7 @@ int RunAnnotate(const AnnotateFlags& flags) {
     };
   }
   const StatusOr<AnnotationOutcome> outcome =
-      AnnotateSequenceDir(flags.sequence_dir, flags.out_dir, *options, progress);
+      AnnotateSequenceDir(flags.sequence_dir, flags.out_dir, *options, flags.inputs, progress);
   if (!outcome.ok()) {
     line.Break();
     PrintError("annotate", outcome.status().message());
@@ -76,6 +78,12 @@ void AddAnnotateCommand(CLI::App& app, int* exit_code) {
       ->required();
   AddConfigFlags(command, &flags->config, AnnotateOptionSchema());
   command->add_option("--out", flags->out_dir, "Annotation output directory")->required();
+  command->add_option("--keyframes", flags->inputs.keyframes_path,
+                      "Keyframes file (lines: frame, then a rig_from_object pose line) in place "
+                      "of <sequence>/keyframes.txt");
+  command->add_option("--frames", flags->inputs.frames,
+                      "A:B: re-annotate frames A..B (inclusive) of the finished annotation in "
+                      "--out and splice them in");
   command->add_flag("--quiet", flags->quiet, "No progress on stderr");
   command->callback([flags, exit_code] { *exit_code = RunAnnotate(*flags); });
 }

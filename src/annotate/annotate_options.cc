@@ -376,6 +376,16 @@ void DeclareViewsAndWindow(OptionSchema<AnnotateOptions>* s) {
       "a frame refined by the edge stage enters the window as its edge pose posterior "
       "(false: its region terms)");
   s->Add(
+       "window.keyframe_sigma_translation_mm",
+       [](auto& o) -> auto& { return o.window.keyframe_sigma_translation_mm; }, "mm",
+       "sigma of a keyframe's prior toward its hand-set pose, translation (keyframes.md)")
+      .Range(Positive());
+  s->Add(
+       "window.keyframe_sigma_rotation_deg",
+       [](auto& o) -> auto& { return o.window.keyframe_sigma_rotation_deg; }, "deg",
+       "sigma of a keyframe's prior toward its hand-set pose, rotation")
+      .Range(Positive());
+  s->Add(
        "window.num_threads", [](auto& o) -> auto& { return o.window.num_threads; }, "",
        "Ceres threads per window")
       .Range(AtLeast(1));

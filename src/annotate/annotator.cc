@@ -2,15 +2,21 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <system_error>
+#include <utility>
 
 #include "bcot/annotate/done_file.h"
+#include "bcot/annotate/splice.h"
+#include "bcot/annotate/tracking_plan.h"
+#include "bcot/core/annotation_poses.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/image_io.h"
 #include "bcot/core/pose_io.h"
@@ -27,9 +33,10 @@ namespace {
 // the camera, no farther than 1000 object diameters, and projecting within the image grown by
 // half its size on each side (partly visible objects are fine). Anything else is a typo in
 // init_pose.txt (a unit, a sign, a transposed matrix) that no solve can recover from.
-Status CheckInitialPose(const Sequence& sequence, const std::vector<TrackedView>& views,
-                        const Mesh& mesh) {
-  const Eigen::Vector3d centre_in_rig = *sequence.init_rig_from_object * mesh.bbox_center();
+// An anchor pose (init_pose.txt or a keyframe) must put the object in at least one view.
+Status CheckAnchorPose(const Eigen::Isometry3d& rig_from_object, const std::string& source,
+                       int frame, const std::vector<TrackedView>& views, const Mesh& mesh) {
+  const Eigen::Vector3d centre_in_rig = rig_from_object * mesh.bbox_center();
   std::vector<std::string> where;
   for (const TrackedView& view : views) {
     const Camera& camera = view.camera;
@@ -54,9 +61,35 @@ Status CheckInitialPose(const Sequence& sequence, const std::vector<TrackedView>
   }
   std::string places;
   for (const std::string& place : where) places += (places.empty() ? "" : "; ") + place;
-  return Status::InvalidInput(
-      fmt::format("{}/init_pose.txt: the object is not in view at frame 0: its centre is {}",
-                  sequence.dir, places));
+  return Status::InvalidInput(fmt::format(
+      "{}: the object is not in view at frame {}: its centre is {}", source, frame, places));
+}
+
+// Frames before and after a re-annotated span whose existing poses the window holds as its
+// context: a window's size (the whole sequence for size 0), at least the priors' reach.
+int WindowMargin(const WindowProblemOptions& window, int num_frames) {
+  return window.size == 0 ? num_frames : std::max(window.size, window.ContextFrames());
+}
+
+// Where tracking restarts: rig_from_object by frame (keyframes win over init_pose.txt at
+// frame 0), each checked to put the object in view.
+// Only anchors in frames [first, end) are returned; none is an error of the caller's to report.
+StatusOr<std::map<int, Eigen::Isometry3d>> AnchorPoses(const Sequence& sequence,
+                                                       const std::vector<TrackedView>& views,
+                                                       const Mesh& mesh, int first, int end) {
+  std::map<int, Eigen::Isometry3d> anchors;
+  if (first == 0 && sequence.init_rig_from_object.has_value() && sequence.keyframes.count(0) == 0) {
+    BCOT_RETURN_IF_ERROR(CheckAnchorPose(*sequence.init_rig_from_object,
+                                         sequence.dir + "/init_pose.txt", 0, views, mesh));
+    anchors[0] = *sequence.init_rig_from_object;
+  }
+  for (const auto& [frame, rig_from_object] : sequence.keyframes) {
+    if (frame < first || frame >= end) continue;
+    BCOT_RETURN_IF_ERROR(
+        CheckAnchorPose(rig_from_object, sequence.keyframes_path, frame, views, mesh));
+    anchors[frame] = rig_from_object;
+  }
+  return anchors;
 }
 
 // FNV-1a, 64 bit: a stable content hash (not cryptographic; it detects changed inputs).
@@ -111,7 +144,9 @@ StatusOr<std::vector<TrackedView>> SelectViews(const Rig& rig, const ViewSelecti
   return views;
 }
 
-std::string FramesCsv(const SequenceAnnotation& annotation) {
+}  // namespace
+
+std::string FormatFramesCsv(const SequenceAnnotation& annotation) {
   std::string csv = "frame,termination,rounds,iterations,initial_energy,final_energy";
   for (const std::string& name : annotation.view_names) csv += ",energy_" + name;
   for (const std::string& name : annotation.view_names) csv += ",pixels_" + name;
@@ -120,8 +155,9 @@ std::string FramesCsv(const SequenceAnnotation& annotation) {
   for (size_t f = 0; f < annotation.frames.size(); ++f) {
     const AnnotatedFrame& frame = annotation.frames[f];
     const FrameSummary& s = frame.summary;
-    csv += fmt::format("{},{},{},{},{:.6g},{:.6g}", f, FrameTerminationName(s.termination),
-                       s.rounds, s.iterations, s.initial_energy, s.final_energy);
+    csv += fmt::format("{},{},{},{},{:.6g},{:.6g}", annotation.first_frame + f,
+                       FrameTerminationName(s.termination), s.rounds, s.iterations,
+                       s.initial_energy, s.final_energy);
     for (const FrameViewSummary& view : s.views) csv += fmt::format(",{:.6g}", view.energy);
     for (const FrameViewSummary& view : s.views) csv += fmt::format(",{}", view.pixels);
     for (const FrameViewSummary& view : s.views) csv += fmt::format(",{}", view.edge_lines);
@@ -130,8 +166,6 @@ std::string FramesCsv(const SequenceAnnotation& annotation) {
   }
   return csv;
 }
-
-}  // namespace
 
 std::string AnnotateConfigHash(const AnnotateOptions& options) {
   Fnv1a hash;
@@ -142,11 +176,18 @@ std::string AnnotateConfigHash(const AnnotateOptions& options) {
 StatusOr<std::string> SequenceInputHash(const Sequence& sequence) {
   Fnv1a hash;
   const std::string dir = sequence.dir;
-  for (const std::string& path : {dir + "/rig.yaml", dir + "/object.yaml",
-                                  sequence.object.mesh_path, dir + "/init_pose.txt"}) {
+  std::vector<std::string> paths = {dir + "/rig.yaml", dir + "/object.yaml",
+                                    sequence.object.mesh_path};
+  if (sequence.init_rig_from_object.has_value()) paths.push_back(dir + "/init_pose.txt");
+  for (const std::string& path : paths) {
     StatusOr<std::string> content = ReadTextFile(path);
     if (!content.ok()) return content.status();
     hash.Add(*content);
+  }
+  if (!sequence.keyframes_path.empty()) {
+    BCOT_ASSIGN_OR_RETURN(const std::string keyframes, ReadTextFile(sequence.keyframes_path));
+    hash.Add("keyframes");
+    hash.Add(keyframes);
   }
   for (const std::vector<std::string>& camera : sequence.image_paths) {
     for (const std::string& path : camera) {
@@ -173,66 +214,157 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence, const Ra
                                               const AnnotateOptions& options,
                                               const AnnotateProgress& progress,
                                               const AnnotateFrameObserver& observer) {
+  FrameSpan span;
+  span.end = sequence.num_frames;
+  return AnnotateFrames(sequence, caster, options, span, progress, observer);
+}
+
+StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayCaster& caster,
+                                            const AnnotateOptions& options, const FrameSpan& span,
+                                            const AnnotateProgress& progress,
+                                            const AnnotateFrameObserver& observer) {
   BCOT_RETURN_IF_ERROR(options.Validate());
-  if (!sequence.init_rig_from_object.has_value()) {
-    return Status::NotFound(sequence.dir + "/init_pose.txt: missing (the pose of frame 0)");
+  const std::vector<Eigen::Isometry3d>& existing = span.existing_rig_from_object;
+  if (!(0 <= span.first && span.first < span.end && span.end <= sequence.num_frames)) {
+    return Status::InvalidInput(fmt::format("frames {}:{}: outside the sequence's frames 0:{}",
+                                            span.first, span.end - 1, sequence.num_frames - 1));
+  }
+  if (!existing.empty() && static_cast<int>(existing.size()) != sequence.num_frames) {
+    return Status::InvalidInput(fmt::format("the existing annotation has {} poses for {} frames",
+                                            existing.size(), sequence.num_frames));
   }
   std::vector<int> rig_indices;
   StatusOr<std::vector<TrackedView>> views = SelectViews(sequence.rig, options.views, &rig_indices);
   if (!views.ok()) return views.status();
   const Mesh& mesh = caster.mesh();
-  BCOT_RETURN_IF_ERROR(CheckInitialPose(sequence, *views, mesh));
+  using AnchorMap = std::map<int, Eigen::Isometry3d>;
+  BCOT_ASSIGN_OR_RETURN(AnchorMap anchors,
+                        AnchorPoses(sequence, *views, mesh, span.first, span.end));
+  // Re-annotating a span of an existing annotation: tracking continues from the pose before it,
+  // unless a keyframe starts the span.
+  if (!existing.empty() && span.first > 0 && anchors.count(span.first) == 0) {
+    anchors[span.first - 1] = existing[span.first - 1];
+  }
+  if (anchors.empty()) {
+    return Status::NotFound(fmt::format(
+        "{}: no pose to start tracking from in frames {}:{} (init_pose.txt for frame 0, a "
+        "keyframe, or an existing annotation before the range)",
+        sequence.dir, span.first, span.end - 1));
+  }
   StatusOr<std::unique_ptr<MultiViewTracker>> tracker =
       MultiViewTracker::Create(caster, *views, options.tracker);
   if (!tracker.ok()) return tracker.status();
 
   SequenceAnnotation annotation;
+  annotation.first_frame = span.first;
   for (const TrackedView& view : *views) annotation.view_names.push_back(view.camera.name);
   const Eigen::Isometry3d objcentre_from_template = mesh.objcentre_from_template();
   const Eigen::Isometry3d template_from_objcentre = objcentre_from_template.inverse();
-  Eigen::Isometry3d rig_from_objcentre = *sequence.init_rig_from_object * template_from_objcentre;
+  // The window sees frames [window_first, window_end): the span and, around it, the existing
+  // poses its priors reach, held constant (no templates).
+  const int margin = existing.empty() ? 0 : WindowMargin(options.window, sequence.num_frames);
+  const int window_first = std::max(0, span.first - margin);
+  const int window_end = std::min(sequence.num_frames, span.end + margin);
   std::unique_ptr<WindowSmoother> window;
-  if (options.window.enabled) window = std::make_unique<WindowSmoother>(options.window);
-  std::vector<ViewLinearisation> linearisations;
-  std::vector<ViewLinearisation>* const templates_out =
-      window || observer ? &linearisations : nullptr;
+  const auto push_held = [&](int first, int end) {
+    for (int frame = first; frame < end; ++frame) {
+      window->Push(existing[frame] * template_from_objcentre, {});
+    }
+  };
+  if (options.window.enabled) {
+    window = std::make_unique<WindowSmoother>(options.window);
+    std::map<int, Eigen::Isometry3d> keyframe_anchors;
+    for (const auto& [frame, rig_from_object] : sequence.keyframes) {
+      if (frame >= span.first && frame < span.end) {
+        keyframe_anchors[frame - window_first] = rig_from_object * template_from_objcentre;
+      }
+    }
+    window->SetAnchors(std::move(keyframe_anchors));
+    push_held(window_first, span.first);
+  }
+  const bool keep_templates = window || observer;
 
-  for (int frame = 0; frame < sequence.num_frames; ++frame) {
+  const auto read_images = [&](int frame) -> StatusOr<std::vector<cv::Mat3b>> {
     std::vector<cv::Mat3b> images;
     for (size_t v = 0; v < rig_indices.size(); ++v) {
-      StatusOr<cv::Mat3b> image =
-          ReadCameraImage(sequence.image_paths[rig_indices[v]][frame], (*views)[v].camera);
-      if (!image.ok()) return image.status();
-      images.push_back(*image);
+      BCOT_ASSIGN_OR_RETURN(
+          cv::Mat3b image,
+          ReadCameraImage(sequence.image_paths[rig_indices[v]][frame], (*views)[v].camera));
+      images.push_back(image);
     }
-    const auto start = std::chrono::steady_clock::now();
-    StatusOr<FrameSummary> summary =
-        frame == 0 ? (*tracker)->Initialize(images, &rig_from_objcentre, templates_out)
-                   : (*tracker)->Track(images, &rig_from_objcentre, templates_out);
-    if (!summary.ok()) return summary.status();
+    return images;
+  };
+  // One solved frame before it is recorded (backward segments are recorded in frame order).
+  struct Solved {
     AnnotatedFrame record;
-    record.summary = *summary;
-    record.milliseconds =
+    Eigen::Isometry3d rig_from_objcentre;
+    std::vector<ViewLinearisation> linearisations;
+  };
+  const auto solve = [&](int frame, bool initialize,
+                         Eigen::Isometry3d* rig_from_objcentre) -> StatusOr<Solved> {
+    BCOT_ASSIGN_OR_RETURN(const std::vector<cv::Mat3b> images, read_images(frame));
+    Solved solved;
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<ViewLinearisation>* templates_out =
+        keep_templates ? &solved.linearisations : nullptr;
+    BCOT_ASSIGN_OR_RETURN(solved.record.summary,
+                          initialize
+                              ? (*tracker)->Initialize(images, rig_from_objcentre, templates_out)
+                              : (*tracker)->Track(images, rig_from_objcentre, templates_out));
+    solved.record.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    if (!summary->usable()) ++annotation.failed_frames;
-    annotation.frames.push_back(record);
-    annotation.rig_from_object.push_back(rig_from_objcentre * objcentre_from_template);
-    if (observer) observer(frame, rig_from_objcentre, linearisations);
-    if (window) window->Push(rig_from_objcentre, std::move(linearisations));
-    if (progress) progress(frame + 1, sequence.num_frames);
+    solved.rig_from_objcentre = *rig_from_objcentre;
+    return solved;
+  };
+  const int span_frames = span.end - span.first;
+  const auto record = [&](int frame, Solved solved) {
+    if (frame < span.first) return;  // the existing pose before the span only starts tracking
+    BCOT_CHECK(frame == span.first + static_cast<int>(annotation.frames.size()));
+    if (!solved.record.summary.usable()) ++annotation.failed_frames;
+    annotation.frames.push_back(solved.record);
+    annotation.rig_from_object.push_back(solved.rig_from_objcentre * objcentre_from_template);
+    if (observer) observer(frame, solved.rig_from_objcentre, solved.linearisations);
+    if (window) window->Push(solved.rig_from_objcentre, std::move(solved.linearisations));
+    if (progress) progress(frame + 1 - span.first, span_frames);
+  };
+
+  // Tracking plans in frames counted from the first anchor or the span, whichever is earlier.
+  const int plan_first = std::min(span.first, anchors.begin()->first);
+  std::vector<int> anchor_frames;
+  for (const auto& anchor : anchors) anchor_frames.push_back(anchor.first - plan_first);
+  for (const TrackingSegment& segment : PlanTracking(anchor_frames, span.end - plan_first)) {
+    const int anchor = plan_first + segment.anchor;
+    const int first = plan_first + segment.first;
+    const int end = plan_first + segment.end;
+    Eigen::Isometry3d rig_from_objcentre = anchors.at(anchor) * template_from_objcentre;
+    if (segment.backward) {
+      // The anchor frame starts the tracker; its forward segment records it.
+      BCOT_RETURN_IF_ERROR(solve(anchor, true, &rig_from_objcentre).status());
+      std::vector<Solved> solved(end - first);
+      for (int frame = end - 1; frame >= first; --frame) {
+        BCOT_ASSIGN_OR_RETURN(solved[frame - first], solve(frame, false, &rig_from_objcentre));
+      }
+      for (int frame = first; frame < end; ++frame) record(frame, std::move(solved[frame - first]));
+      continue;
+    }
+    for (int frame = first; frame < end; ++frame) {
+      BCOT_ASSIGN_OR_RETURN(Solved solved, solve(frame, frame == anchor, &rig_from_objcentre));
+      record(frame, std::move(solved));
+    }
   }
   annotation.per_frame_rig_from_object = annotation.rig_from_object;
   if (window) {
+    push_held(span.end, window_end);
     window->Finish();
-    for (int frame = 0; frame < sequence.num_frames; ++frame) {
+    for (int i = 0; i < span_frames; ++i) {
       const Eigen::Isometry3d smoothed =
-          window->rig_from_objcentre()[frame] * objcentre_from_template;
-      AnnotatedFrame& record = annotation.frames[frame];
+          window->rig_from_objcentre()[span.first + i - window_first] * objcentre_from_template;
+      AnnotatedFrame& record = annotation.frames[i];
       record.window_rotation_deg =
-          RotationDistanceDeg(annotation.rig_from_object[frame].linear(), smoothed.linear());
+          RotationDistanceDeg(annotation.rig_from_object[i].linear(), smoothed.linear());
       record.window_translation_mm =
-          (annotation.rig_from_object[frame].translation() - smoothed.translation()).norm();
-      annotation.rig_from_object[frame] = smoothed;
+          (annotation.rig_from_object[i].translation() - smoothed.translation()).norm();
+      annotation.rig_from_object[i] = smoothed;
     }
   }
   return annotation;
@@ -241,18 +373,8 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence, const Ra
 Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,
                        const AnnotateOptions& options, const std::string& input_hash,
                        const SequenceAnnotation& annotation) {
-  BCOT_RETURN_IF_ERROR(CreateDirectories(out_dir));
-  BCOT_RETURN_IF_ERROR(WritePoseFile(out_dir + "/rig_from_object.txt", annotation.rig_from_object));
-  for (const RigCamera& camera : sequence.rig.cameras()) {
-    std::vector<Eigen::Isometry3d> cam_from_object;
-    for (const Eigen::Isometry3d& rig_from_object : annotation.rig_from_object) {
-      cam_from_object.push_back(camera.cam_from_rig * rig_from_object);
-    }
-    BCOT_RETURN_IF_ERROR(CreateDirectories(out_dir + "/" + camera.camera.name));
-    BCOT_RETURN_IF_ERROR(
-        WritePoseFile(out_dir + "/" + camera.camera.name + "/pose.txt", cam_from_object));
-  }
-  BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/frames.csv", FramesCsv(annotation)));
+  BCOT_RETURN_IF_ERROR(WriteAnnotationPoses(out_dir, sequence.rig, annotation.rig_from_object));
+  BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/frames.csv", FormatFramesCsv(annotation)));
   const std::string config = FormatAnnotateOptions(options);
   const Provenance provenance = CurrentProvenance(AnnotateConfigHash(options));
   const std::string header = fmt::format(
@@ -263,15 +385,42 @@ Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,
   return WriteFileAtomic(out_dir + "/config.resolved.yaml", header + config);
 }
 
+StatusOr<Sequence> LoadSequenceToAnnotate(const std::string& sequence_dir,
+                                          const AnnotateInputs& inputs, bool require_anchor) {
+  BCOT_ASSIGN_OR_RETURN(Sequence sequence, LoadSequence(sequence_dir, /*require_init_pose=*/false));
+  if (!inputs.keyframes_path.empty()) {
+    BCOT_RETURN_IF_ERROR(LoadKeyframes(
+        std::filesystem::absolute(inputs.keyframes_path).lexically_normal().string(), &sequence));
+  }
+  if (require_anchor && !sequence.init_rig_from_object.has_value() && sequence.keyframes.empty()) {
+    return Status::NotFound(fmt::format(
+        "{}/init_pose.txt: not found; it holds one pose line, the rough rig_from_object of frame "
+        "0 (or give keyframes: keyframes.txt or --keyframes FILE)",
+        sequence.dir));
+  }
+  return sequence;
+}
+
 StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
                                                 const std::string& out_dir,
                                                 const AnnotateOptions& options,
                                                 const AnnotateProgress& progress) {
+  return AnnotateSequenceDir(sequence_dir, out_dir, options, AnnotateInputs(), progress);
+}
+
+StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
+                                                const std::string& out_dir,
+                                                const AnnotateOptions& options,
+                                                const AnnotateInputs& inputs,
+                                                const AnnotateProgress& progress) {
+  if (!inputs.frames.empty()) {
+    return SpliceFrames(sequence_dir, out_dir, options, inputs, progress);
+  }
   // An absolute path, so DONE lets `bcot report` find the images again.
   BCOT_ASSIGN_OR_RETURN(
       const Sequence sequence,
-      LoadSequence(std::filesystem::absolute(sequence_dir).lexically_normal().string(),
-                   /*require_init_pose=*/true));
+      LoadSequenceToAnnotate(std::filesystem::absolute(sequence_dir).lexically_normal().string(),
+                             inputs));
   BCOT_ASSIGN_OR_RETURN(const std::string input_hash, SequenceInputHash(sequence));
   // The output must be writable before the solve, not after it.
   BCOT_RETURN_IF_ERROR(CheckWritableDirectory(out_dir));
@@ -286,13 +435,22 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
   BCOT_ASSIGN_OR_RETURN(QualityReport quality,
                         MeasureQuality(sequence, caster, annotation.rig_from_object,
                                        annotation.view_names, options.quality));
+  return FinishAnnotation(out_dir, sequence, caster, options, input_hash,
+                          annotation.rig_from_object, std::move(quality), annotation.failed_frames);
+}
+
+StatusOr<AnnotationOutcome> FinishAnnotation(const std::string& out_dir, const Sequence& sequence,
+                                             const RayCaster& caster,
+                                             const AnnotateOptions& options,
+                                             const std::string& input_hash,
+                                             const std::vector<Eigen::Isometry3d>& rig_from_object,
+                                             QualityReport quality, int failed_frames) {
   quality.provenance = CurrentProvenance(AnnotateConfigHash(options));
-  BCOT_RETURN_IF_ERROR(
-      WriteQualityFiles(out_dir, quality, sequence, caster, annotation.rig_from_object));
+  BCOT_RETURN_IF_ERROR(WriteQualityFiles(out_dir, quality, sequence, caster, rig_from_object));
   AnnotationOutcome outcome;
   outcome.verdict = VerdictOf(quality);
-  outcome.frames = static_cast<int>(annotation.frames.size());
-  outcome.failed_frames = annotation.failed_frames;
+  outcome.frames = static_cast<int>(rig_from_object.size());
+  outcome.failed_frames = failed_frames;
   DoneRecord done;
   done.config_hash = AnnotateConfigHash(options);
   done.input_hash = input_hash;

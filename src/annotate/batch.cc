@@ -256,7 +256,7 @@ StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_d
     const std::string sequence_dir =
         (fs::absolute(root) / relative).lexically_normal().generic_string();
     const std::string annotation_dir = (fs::path(out_dir) / relative).lexically_normal().string();
-    StatusOr<Sequence> sequence = LoadSequence(sequence_dir, /*require_init_pose=*/true);
+    StatusOr<Sequence> sequence = LoadSequenceToAnnotate(sequence_dir, AnnotateInputs());
     StatusOr<std::string> input_hash =
         sequence.ok() ? SequenceInputHash(*sequence) : StatusOr<std::string>(sequence.status());
     if (!input_hash.ok()) {

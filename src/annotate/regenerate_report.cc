@@ -1,9 +1,11 @@
 #include "bcot/annotate/regenerate_report.h"
 
+#include <fmt/format.h>
+
 #include "bcot/annotate/annotate_options.h"
 #include "bcot/annotate/annotator.h"
 #include "bcot/annotate/done_file.h"
-#include "bcot/core/pose_io.h"
+#include "bcot/core/annotation_poses.h"
 #include "bcot/quality/quality_files.h"
 #include "bcot/render/mesh.h"
 
@@ -26,7 +28,14 @@ StatusOr<QualityReport> RegenerateQualityReport(const std::string& annotation_di
           config_path.empty() ? annotation_dir + "/config.resolved.yaml" : config_path, overrides));
   BCOT_ASSIGN_OR_RETURN(const Sequence sequence, LoadSequence(dir, /*require_init_pose=*/false));
   BCOT_ASSIGN_OR_RETURN(const std::vector<Eigen::Isometry3d> rig_from_object,
-                        ReadPoseFile(annotation_dir + "/rig_from_object.txt"));
+                        ReadAnnotationPoses(annotation_dir));
+  if (static_cast<int>(rig_from_object.size()) != sequence.num_frames) {
+    return Status::InvalidInput(fmt::format("{}/{}: {} poses for the {} frames of {}",
+                                            annotation_dir, kRigFromObjectFileName,
+                                            rig_from_object.size(), sequence.num_frames, dir));
+  }
+  // The per-camera files are derived: they follow a hand edit of rig_from_object.txt.
+  BCOT_RETURN_IF_ERROR(WriteDerivedCameraPoses(annotation_dir, sequence.rig, rig_from_object));
   BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
                         Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
   const RayCaster caster(mesh);

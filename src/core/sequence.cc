@@ -1,13 +1,13 @@
 #include "bcot/core/sequence.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <string>
 #include <system_error>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "bcot/core/file_util.h"
 #include "bcot/core/pose_io.h"
@@ -142,7 +142,8 @@ StatusOr<std::vector<std::vector<int64_t>>> ReadTimestamps(const std::string& pa
 
 }  // namespace
 
-StatusOr<std::vector<std::string>> ListFrameImages(const std::string& folder) {
+StatusOr<std::vector<std::string>> ListFrameImages(const std::string& folder,
+                                                   int64_t* first_index) {
   std::error_code error;
   if (!fs::exists(folder, error)) {
     return Status::NotFound(fmt::format("{}: frame folder not found", folder));
@@ -204,24 +205,29 @@ StatusOr<std::vector<std::string>> ListFrameImages(const std::string& folder) {
                                               frames[i - 1].name, frames[i].name, frames[i].index));
     }
   }
-  if (frames.front().index != 0) {
+  if (first_index != nullptr) {
+    *first_index = frames.front().index;
+  } else if (frames.front().index != 0) {
     return Status::InvalidInput(
         fmt::format("{}: frame 0 is missing (numbering starts at 0; the first image is '{}')",
                     folder, frames.front().name));
   }
-  // Frame 0 sets the zero padding; a wider name is fine only once the index needs the digits.
+  // The first frame sets the zero padding; a wider name is fine only once the index needs the
+  // digits.
   const size_t width = frames.front().name.size() - extension.size();
   for (size_t i = 0; i < frames.size(); ++i) {
     const FrameFile& frame = frames[i];
     const std::string expected_name = fmt::format("{:0{}}{}", frame.index, width, extension);
     if (frame.name != expected_name) {
       return Status::InvalidInput(
-          fmt::format("{}: '{}' is not padded like frame 0 '{}' (expected '{}')", folder,
-                      frame.name, frames.front().name, expected_name));
+          fmt::format("{}: '{}' is not padded like frame {} '{}' (expected '{}')", folder,
+                      frame.name, frames.front().index, frames.front().name, expected_name));
     }
-    if (frame.index != static_cast<int64_t>(i)) {
+    const int64_t expected_index = frames.front().index + static_cast<int64_t>(i);
+    if (frame.index != expected_index) {
       return Status::InvalidInput(fmt::format("{}: frame {} is missing ('{}' is followed by '{}')",
-                                              folder, i, frames[i - 1].name, frame.name));
+                                              folder, expected_index, frames[i - 1].name,
+                                              frame.name));
     }
   }
 
@@ -253,7 +259,15 @@ StatusOr<Sequence> LoadSequence(const std::string& dir, bool require_init_pose) 
       return Status::NotFound(fmt::format(
           "{}: folder of camera '{}' (cameras[{}] in rig.yaml) not found", folder, name, camera));
     }
-    BCOT_ASSIGN_OR_RETURN(std::vector<std::string> images, ListFrameImages(folder));
+    int64_t first_index = 0;
+    BCOT_ASSIGN_OR_RETURN(std::vector<std::string> images, ListFrameImages(folder, &first_index));
+    if (camera > 0 && first_index != sequence.first_image_index) {
+      return Status::InvalidInput(fmt::format(
+          "{}: camera '{}' starts at image {} but camera '{}' at image {}; every camera's "
+          "numbering must start at the same index",
+          dir, name, first_index, sequence.rig[0].camera.name, sequence.first_image_index));
+    }
+    sequence.first_image_index = first_index;
     if (camera > 0 && static_cast<int>(images.size()) != sequence.num_frames) {
       return Status::InvalidInput(fmt::format(
           "{}: camera '{}' has {} frames but camera '{}' has {}; every camera needs the same "
@@ -278,12 +292,23 @@ StatusOr<Sequence> LoadSequence(const std::string& dir, bool require_init_pose) 
         "{}: not found; it holds one pose line, the rough rig_from_object of frame 0", init_path));
   }
 
+  const std::string keyframes_path = (root / "keyframes.txt").string();
+  if (fs::exists(keyframes_path, error)) {
+    BCOT_RETURN_IF_ERROR(LoadKeyframes(keyframes_path, &sequence));
+  }
+
   const std::string timestamps_path = (root / "timestamps.csv").string();
   if (fs::exists(timestamps_path, error)) {
     BCOT_ASSIGN_OR_RETURN(sequence.timestamps_ns,
                           ReadTimestamps(timestamps_path, sequence.rig, sequence.num_frames));
   }
   return sequence;
+}
+
+Status LoadKeyframes(const std::string& path, Sequence* sequence) {
+  BCOT_ASSIGN_OR_RETURN(sequence->keyframes, ReadKeyframeFile(path, sequence->num_frames));
+  sequence->keyframes_path = path;
+  return Status::Ok();
 }
 
 }  // namespace bcot

@@ -82,6 +82,13 @@ Status WindowProblemOptions::Validate() const {
       violations.push_back(fmt::format("{} = {}, must be finite and >= 0", name, value));
     }
   }
+  for (const auto& [name, value] :
+       {std::pair{"keyframe_sigma_translation_mm", keyframe_sigma_translation_mm},
+        std::pair{"keyframe_sigma_rotation_deg", keyframe_sigma_rotation_deg}}) {
+    if (!(value > 0.0) || !std::isfinite(value)) {
+      violations.push_back(fmt::format("{} = {}, must be finite and > 0", name, value));
+    }
+  }
   if (num_threads < 1) {
     violations.push_back(fmt::format("num_threads = {}, must be >= 1", num_threads));
   }
@@ -92,9 +99,20 @@ WindowProblem::WindowProblem(const WindowProblemOptions& options) : options_(opt
   BCOT_CHECK(options_.Validate().ok());
 }
 
+PoseGaussian WindowProblem::AnchorGaussian(const Eigen::Isometry3d& rig_from_objcentre) const {
+  PoseGaussian gaussian;
+  gaussian.mean = rig_from_objcentre;
+  const double translation_weight = 1.0 / options_.keyframe_sigma_translation_mm;
+  const double rotation_weight = 1.0 / (options_.keyframe_sigma_rotation_deg * M_PI / 180.0);
+  gaussian.sqrt_information.diagonal() << translation_weight, translation_weight,
+      translation_weight, rotation_weight, rotation_weight, rotation_weight;
+  return gaussian;
+}
+
 WindowSummary WindowProblem::Solve(
     int first, int end, const std::vector<const std::vector<ViewLinearisation>*>& frame_views,
-    std::vector<Eigen::Isometry3d>* rig_from_objcentre) const {
+    std::vector<Eigen::Isometry3d>* rig_from_objcentre,
+    const std::map<int, Eigen::Isometry3d>* anchors) const {
   BCOT_CHECK(rig_from_objcentre != nullptr);
   const int num_frames = static_cast<int>(rig_from_objcentre->size());
   BCOT_CHECK(0 <= first && first < end && end <= num_frames);
@@ -122,6 +140,13 @@ WindowSummary WindowProblem::Solve(
       free[t - lo] = true;
       ++summary.free_frames;
       const std::vector<ViewLinearisation>& views = *frame_views[t - first];
+      if (anchors != nullptr) {
+        const auto anchor = anchors->find(t);
+        if (anchor != anchors->end()) {
+          problem.AddResidualBlock(new PoseGaussianCost(AnchorGaussian(anchor->second)), nullptr,
+                                   block);
+        }
+      }
       if (options_.edge_posterior && views.front().edge_posterior != nullptr) {
         // The frame's edge posterior replaces its region terms (window_problem.h).
         ++summary.edge_frames;
@@ -216,6 +241,11 @@ void WindowSmoother::Push(const Eigen::Isometry3d& rig_from_objcentre,
   }
 }
 
+void WindowSmoother::SetAnchors(std::map<int, Eigen::Isometry3d> anchors) {
+  BCOT_CHECK(poses_.empty());
+  anchors_ = std::move(anchors);
+}
+
 void WindowSmoother::Finish() {
   BCOT_CHECK(!finished_);
   finished_ = true;
@@ -234,7 +264,7 @@ void WindowSmoother::SolveWindow(int end) {
   const int first = next_start_;
   std::vector<const std::vector<ViewLinearisation>*> frame_views;
   for (int t = first; t < end; ++t) frame_views.push_back(&buffer_[t - buffer_first_]);
-  windows_.push_back(problem_.Solve(first, end, frame_views, &poses_));
+  windows_.push_back(problem_.Solve(first, end, frame_views, &poses_, &anchors_));
   const int size = problem_.options().size;
   const int step = size == 0 ? end - first : size - problem_.options().overlap;
   next_start_ = std::min(first + step, end);

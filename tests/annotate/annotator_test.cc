@@ -1,5 +1,6 @@
 #include "bcot/annotate/annotator.h"
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -117,6 +118,119 @@ TEST_F(AnnotatorTest, InputHashChangesWithTheInputs) {
   test::WriteText(copy.File("seq/init_pose.txt"),
                   FormatPoseLine(Eigen::Isometry3d(Eigen::Translation3d(1, 2, 300))) + "\n");
   EXPECT_NE(*SequenceInputHash(*sequence), *before);
+}
+
+// A keyframe is enough to start: without init_pose.txt, tracking runs backwards and forwards
+// from a keyframe at frame 2 (the true pose) and every frame is as accurate as from frame 0.
+TEST_F(AnnotatorTest, AKeyframeTracksBackwardsAndForwardsWithoutInitPose) {
+  test::TempDir copy;
+  const std::string seq = copy.File("seq");
+  std::filesystem::copy(SequenceDir(), seq, std::filesystem::copy_options::recursive);
+  std::filesystem::remove(seq + "/init_pose.txt");
+  const StatusOr<std::vector<Eigen::Isometry3d>> truth =
+      ReadPoseFile(SequenceDir() + "/gt/rig_from_object.txt");
+  ASSERT_TRUE(truth.ok());
+  EXPECT_EQ(AnnotateSequenceDir(seq, copy.File("none"), AnnotateOptions()).status().code(),
+            StatusCode::kNotFound);
+  test::WriteText(seq + "/keyframes.txt", "2 " + FormatPoseLine((*truth)[2]) + "\n");
+  const StatusOr<AnnotationOutcome> outcome =
+      AnnotateSequenceDir(seq, copy.File("out"), AnnotateOptions());
+  ASSERT_TRUE(outcome.ok()) << outcome.status().message();
+  EXPECT_EQ(outcome->failed_frames, 0);
+  const StatusOr<std::vector<Eigen::Isometry3d>> annotated =
+      ReadPoseFile(copy.File("out/rig_from_object.txt"));
+  ASSERT_TRUE(annotated.ok());
+  ASSERT_EQ(annotated->size(), 4u);
+  for (size_t f = 0; f < 4; ++f) {
+    EXPECT_THAT((*annotated)[f], test::PoseNear((*truth)[f], 0.5, 1.0)) << "frame " << f;
+  }
+}
+
+// A wrong init_pose.txt ruins the frames tracked from it; a keyframe at frame 1 restores the
+// frame before it (tracked backwards) and those after it (forwards).
+TEST_F(AnnotatorTest, AKeyframeMendsFramesBeforeAndAfterIt) {
+  test::TempDir copy;
+  const std::string seq = copy.File("seq");
+  std::filesystem::copy(SequenceDir(), seq, std::filesystem::copy_options::recursive);
+  const StatusOr<std::vector<Eigen::Isometry3d>> truth =
+      ReadPoseFile(SequenceDir() + "/gt/rig_from_object.txt");
+  ASSERT_TRUE(truth.ok());
+  Eigen::Isometry3d wrong = (*truth)[0];
+  wrong.translation() += Eigen::Vector3d(60.0, -40.0, 0.0);
+  wrong.linear() = wrong.linear() * Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitY()).matrix();
+  ASSERT_TRUE(WritePoseFile(seq + "/init_pose.txt", {wrong}).ok());
+  AnnotateOptions options;
+  StatusOr<Sequence> sequence = LoadSequence(seq);
+  ASSERT_TRUE(sequence.ok());
+  const StatusOr<SequenceAnnotation> without = AnnotateSequence(*sequence, options);
+  ASSERT_TRUE(without.ok()) << without.status().message();
+  EXPECT_THAT(without->rig_from_object[3], ::testing::Not(test::PoseNear((*truth)[3], 0.5, 1.0)));
+
+  test::WriteText(copy.File("keys.txt"), "1 " + FormatPoseLine((*truth)[1]) + "\n");
+  ASSERT_TRUE(LoadKeyframes(copy.File("keys.txt"), &*sequence).ok());
+  const StatusOr<SequenceAnnotation> with = AnnotateSequence(*sequence, options);
+  ASSERT_TRUE(with.ok()) << with.status().message();
+  // Frame 0 is as near to its init pose as to the keyframe: it keeps the init pose's solve.
+  for (size_t f = 1; f < 4; ++f) {
+    EXPECT_THAT(with->rig_from_object[f], test::PoseNear((*truth)[f], 0.5, 1.0)) << "frame " << f;
+  }
+  // With the keyframe at frame 3 instead, frame 2 (nearer to it than to frame 0) is solved
+  // backwards from it; frame 1 is as near to both and keeps the init pose's.
+  test::WriteText(copy.File("keys.txt"), "3 " + FormatPoseLine((*truth)[3]) + "\n");
+  ASSERT_TRUE(LoadKeyframes(copy.File("keys.txt"), &*sequence).ok());
+  const StatusOr<SequenceAnnotation> later = AnnotateSequence(*sequence, options);
+  ASSERT_TRUE(later.ok()) << later.status().message();
+  for (size_t f = 2; f < 4; ++f) {
+    EXPECT_THAT(later->rig_from_object[f], test::PoseNear((*truth)[f], 0.5, 1.0)) << "frame " << f;
+  }
+}
+
+TEST_F(AnnotatorTest, KeyframesArePartOfTheInputHash) {
+  test::TempDir copy;
+  const std::string seq = copy.File("seq");
+  std::filesystem::copy(SequenceDir(), seq, std::filesystem::copy_options::recursive);
+  StatusOr<Sequence> sequence = LoadSequence(seq);
+  ASSERT_TRUE(sequence.ok());
+  const std::string before = *SequenceInputHash(*sequence);
+  const Eigen::Isometry3d pose(Eigen::Translation3d(1, 2, 300));
+  test::WriteText(seq + "/keyframes.txt", "3 " + FormatPoseLine(pose) + "\n");
+  sequence = LoadSequence(seq);
+  ASSERT_TRUE(sequence.ok());
+  ASSERT_EQ(sequence->keyframes.size(), 1u);
+  const std::string with_keyframe = *SequenceInputHash(*sequence);
+  EXPECT_NE(with_keyframe, before);
+  test::WriteText(seq + "/keyframes.txt", "2 " + FormatPoseLine(pose) + "\n");
+  sequence = LoadSequence(seq);
+  ASSERT_TRUE(sequence.ok());
+  EXPECT_NE(*SequenceInputHash(*sequence), with_keyframe);
+}
+
+// Images numbered from 7 (a cut of a longer capture) annotate as frames 0, 1, ...: the same
+// poses as the sequence numbered from 0.
+TEST_F(AnnotatorTest, ImageNumberingMayStartAnywhere) {
+  test::TempDir copy;
+  const std::string seq = copy.File("seq");
+  std::filesystem::copy(SequenceDir(), seq, std::filesystem::copy_options::recursive);
+  for (const char* camera : {"cam0", "cam1"}) {
+    for (int f = 3; f >= 0; --f) {
+      std::filesystem::rename(seq + fmt::format("/{}/{:06d}.png", camera, f),
+                              seq + fmt::format("/{}/{:06d}.png", camera, f + 7));
+    }
+  }
+  AnnotateOptions options;
+  options.tracker.frame.rounds = 1;
+  const StatusOr<Sequence> shifted = LoadSequence(seq);
+  ASSERT_TRUE(shifted.ok()) << shifted.status().message();
+  EXPECT_EQ(shifted->first_image_index, 7);
+  EXPECT_EQ(shifted->num_frames, 4);
+  const StatusOr<Sequence> original = LoadSequence(SequenceDir());
+  ASSERT_TRUE(original.ok());
+  const StatusOr<SequenceAnnotation> a = AnnotateSequence(*shifted, options);
+  const StatusOr<SequenceAnnotation> b = AnnotateSequence(*original, options);
+  ASSERT_TRUE(a.ok() && b.ok());
+  for (size_t f = 0; f < 4; ++f) {
+    EXPECT_TRUE(a->rig_from_object[f].isApprox(b->rig_from_object[f], 1e-12)) << f;
+  }
 }
 
 TEST_F(AnnotatorTest, BadInputsAreErrorsNamingTheFile) {

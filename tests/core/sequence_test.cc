@@ -1,13 +1,12 @@
 #include "bcot/core/sequence.h"
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "bcot/core/pose_io.h"
 #include "bcot/core/rig_io.h"
@@ -329,6 +328,23 @@ TEST(ListFrameImagesTest, NumberingMustStartAtZero) {
   EXPECT_THAT(images.status().message(),
               AllOf(StartsWith(dir.path() + ": "), HasSubstr("frame 0 is missing"),
                     HasSubstr("'000001.png'")));
+}
+
+TEST(ListFrameImagesTest, NumberingMayStartAnywhereWhenAsked) {
+  test::TempDir dir;
+  test::WriteText(dir.File("000120.png"), "");
+  test::WriteText(dir.File("000121.png"), "");
+  test::WriteText(dir.File("000123.png"), "");
+  int64_t first = -1;
+  auto images = ListFrameImages(dir.path(), &first);
+  ASSERT_FALSE(images.ok());
+  EXPECT_THAT(images.status().message(), HasSubstr("frame 122 is missing"));
+  test::WriteText(dir.File("000122.png"), "");
+  images = ListFrameImages(dir.path(), &first);
+  ASSERT_TRUE(images.ok()) << images.status().message();
+  EXPECT_EQ(first, 120);
+  ASSERT_EQ(images->size(), 4u);
+  EXPECT_THAT(images->front(), HasSubstr("000120.png"));
 }
 
 TEST(ListFrameImagesTest, MixedExtensionsAreRejected) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "bcot/core/file_util.h"
+#include "bcot/core/pose_io.h"
 #include "bcot/core/status.h"
 #include "bcot/core/version.h"
 #include "test_util.h"
@@ -118,6 +119,50 @@ TEST_F(AnnotateCommandTest, LogProgressProvenanceAndReportConfig) {
             2)
       << output;
   EXPECT_THAT(output, HasSubstr("treshold_px"));
+}
+
+// --keyframes FILE in place of init_pose.txt, then --frames re-annotating a range of that
+// annotation; a bad keyframes line is a one-line error naming file and line.
+TEST_F(AnnotateCommandTest, KeyframesAndFrameRangeFromTheCommandLine) {
+  test::TempDir dir;
+  const std::string seq = CopySequence(dir);
+  std::filesystem::remove(seq + "/init_pose.txt");
+  const std::string config = " --config " + test::SourcePath("configs/track.yaml");
+  std::string output;
+  test::WriteText(dir.File("keys.txt"), "1 1 0 0 0 1 0 0 0 1 0 0\n");
+  EXPECT_NE(test::RunCommand(Annotate(seq + " --out " + dir.File("ann") + config + " --keyframes " +
+                                      dir.File("keys.txt")),
+                             &output),
+            0);
+  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_THAT(output, HasSubstr("keys.txt:1: expected 12 numbers"));
+
+  const StatusOr<std::vector<Eigen::Isometry3d>> truth =
+      ReadPoseFile(seq + "/gt/rig_from_object.txt");
+  ASSERT_TRUE(truth.ok());
+  test::WriteText(dir.File("keys.txt"), "1 " + FormatPoseLine((*truth)[1]) + "\n");
+  ASSERT_EQ(test::RunCommand(Annotate(seq + " --out " + dir.File("ann") + config + " --keyframes " +
+                                      dir.File("keys.txt")),
+                             &output),
+            0)
+      << output;
+  const std::string before = *ReadTextFile(dir.File("ann/rig_from_object.txt"));
+  ASSERT_EQ(test::RunCommand(Annotate(seq + " --out " + dir.File("ann") + config + " --keyframes " +
+                                      dir.File("keys.txt") + " --frames 2:2"),
+                             &output),
+            0)
+      << output;
+  EXPECT_TRUE(std::filesystem::exists(dir.File("ann/DONE")));
+  const std::string after = *ReadTextFile(dir.File("ann/rig_from_object.txt"));
+  // Frames 0 and 1 (before the range; 3 frames in all) are byte-identical.
+  const auto first_two = [](const std::string& text) {
+    return text.substr(0, text.find('\n', text.find('\n') + 1));
+  };
+  EXPECT_EQ(first_two(after), first_two(before));
+  EXPECT_EQ(test::RunCommand(Annotate(seq + " --out " + dir.File("ann") + config + " --frames 2:7"),
+                             &output),
+            2);
+  EXPECT_THAT(output, HasSubstr("--frames 2:7"));
 }
 
 TEST_F(AnnotateCommandTest, BadConfigValueIsAConfigError) {

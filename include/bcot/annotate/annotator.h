@@ -1,9 +1,11 @@
 // Annotates one sequence directory (DESIGN.md input contract) and writes its annotation
-// directory (output contract): frame 0 from init_pose.txt by MultiViewTracker::Initialize
-// (colour bootstrap + joint solve), every later frame from the previous frame's pose by
-// MultiViewTracker::Track. With `window.enabled`, the temporal smoothing window
-// (window_problem.h) then refines the poses, streaming: it runs while the frames are solved and
-// keeps the templates of at most window.size + window.ContextFrames() (2 or 3) frames.
+// directory (output contract): tracking starts at the anchors — frame 0 from init_pose.txt and
+// every keyframe (keyframes.h) — by MultiViewTracker::Initialize (colour bootstrap + joint
+// solve), and runs forwards and backwards from each by MultiViewTracker::Track, each frame from
+// its nearer anchor (tracking_plan.h). Keyframes are anchors of the temporal window too. With
+// `window.enabled`, the temporal smoothing window (window_problem.h) then refines the poses,
+// streaming: it runs while the frames are solved and keeps the templates of at most window.size +
+// window.ContextFrames() (2 or 3) frames.
 //
 // One pass (AnnotateSequenceDir): remove DONE → solve every frame → write the poses, frames.csv
 // and config.resolved.yaml → measure the quality on the poses in memory with the same mesh and
@@ -48,7 +50,8 @@ struct AnnotatedFrame {
 };
 
 struct SequenceAnnotation {
-  std::vector<std::string> view_names;                       // the cameras used, in solve order
+  int first_frame = 0;                  // frame index of the first entry of the vectors below
+  std::vector<std::string> view_names;  // the cameras used, in solve order
   std::vector<Eigen::Isometry3d> rig_from_object;            // per frame, O_t (final)
   std::vector<Eigen::Isometry3d> per_frame_rig_from_object;  // before the window, O_t
   std::vector<AnnotatedFrame> frames;                        // per frame
@@ -67,7 +70,8 @@ using AnnotateFrameObserver =
 
 // Solves every frame. Errors: invalid options (kInvalidConfig); a selected camera missing from
 // the rig (kInvalidConfig); the mesh does not load, an image does not read or has the wrong
-// size, no init_pose.txt (kInvalidInput / kNotFound, naming the file).
+// size, neither init_pose.txt nor a keyframe, an anchor pose with the object out of every view
+// (kInvalidInput / kNotFound, naming the file).
 StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
                                               const AnnotateOptions& options,
                                               const AnnotateProgress& progress = {},
@@ -78,12 +82,37 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence, const Ra
                                               const AnnotateProgress& progress = {},
                                               const AnnotateFrameObserver& observer = {});
 
+// A span of frames to annotate; the other frames of the sequence keep their poses.
+struct FrameSpan {
+  int first = 0;  // frames [first, end)
+  int end = 0;
+  // Empty, or the final rig_from_object of every frame of an existing annotation of the
+  // sequence: then tracking starts from its pose at first − 1 (unless a keyframe is at `first`),
+  // and the temporal window holds its poses within a window's size around the span constant as
+  // context, so the span joins its neighbours smoothly while they stay unchanged.
+  std::vector<Eigen::Isometry3d> existing_rig_from_object;
+};
+
+// Solves frames [span.first, span.end) (the returned vectors hold those frames only; observer
+// and progress count them). Anchors: init_pose.txt when the span starts at 0, the keyframes in
+// the span, and the existing pose before it (see FrameSpan). Errors as AnnotateSequence's, and
+// kInvalidInput for a span outside the sequence, kNotFound when no anchor starts tracking.
+StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayCaster& caster,
+                                            const AnnotateOptions& options, const FrameSpan& span,
+                                            const AnnotateProgress& progress = {},
+                                            const AnnotateFrameObserver& observer = {});
+
 // A hash (16 hex digits) of everything a sequence's annotation depends on: rig.yaml,
-// object.yaml, the mesh file, init_pose.txt and every image file's name and size.
+// object.yaml, the mesh file, init_pose.txt (when present), the keyframes file (when the
+// sequence has one) and every image file's name and size.
 StatusOr<std::string> SequenceInputHash(const Sequence& sequence);
 
 // The config hash DONE records: a hash (16 hex digits) of FormatAnnotateOptions(options).
 std::string AnnotateConfigHash(const AnnotateOptions& options);
+
+// frames.csv: a header line, then one row per frame of `annotation` (numbered from its
+// first_frame).
+std::string FormatFramesCsv(const SequenceAnnotation& annotation);
 
 // Writes the poses, frames.csv and config.resolved.yaml (not the quality files, not DONE).
 Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,
@@ -97,8 +126,37 @@ struct AnnotationOutcome {
   int failed_frames = 0;
 };
 
+// The end of a run, after the poses, frames.csv and config.resolved.yaml are written: the
+// quality files of `quality` (measured on `rig_from_object`; its provenance is set here), then
+// DONE.
+StatusOr<AnnotationOutcome> FinishAnnotation(const std::string& out_dir, const Sequence& sequence,
+                                             const RayCaster& caster,
+                                             const AnnotateOptions& options,
+                                             const std::string& input_hash,
+                                             const std::vector<Eigen::Isometry3d>& rig_from_object,
+                                             QualityReport quality, int failed_frames);
+
+// Inputs of one run besides the sequence directory and the options.
+struct AnnotateInputs {
+  // Keyframes file in place of <seq>/keyframes.txt (keyframes.h); empty = that file if any.
+  std::string keyframes_path;
+  // `--frames A:B`: re-annotate frames A..B (inclusive) of the finished annotation in out_dir
+  // and splice them in (splice.h); empty = annotate the whole sequence.
+  std::string frames;
+};
+
+// LoadSequence with the keyframes of `inputs`; with `require_anchor`, kNotFound when the
+// sequence has neither init_pose.txt nor a keyframe.
+StatusOr<Sequence> LoadSequenceToAnnotate(const std::string& sequence_dir,
+                                          const AnnotateInputs& inputs, bool require_anchor = true);
+
 // Loads the sequence at `sequence_dir`, annotates it and writes `out_dir` in one pass (see the
-// header comment).
+// header comment). The sequence needs init_pose.txt or at least one keyframe.
+StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
+                                                const std::string& out_dir,
+                                                const AnnotateOptions& options,
+                                                const AnnotateInputs& inputs,
+                                                const AnnotateProgress& progress = {});
 StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
                                                 const std::string& out_dir,
                                                 const AnnotateOptions& options,

@@ -26,6 +26,9 @@
 // in physical units (robust_translation_mm, robust_rotation_deg; ρ(s) = s when 0).
 // The prior is a Gaussian negative log-likelihood with standard deviations σ, the same currency
 // as F (a −log likelihood per pixel).
+// Anchors (keyframes, set by hand): an anchored frame t in the window adds ½‖diag(1/σ_k)·e‖²,
+// e the displacement of T_t from the anchor pose (PoseGaussianCost; σ_k = keyframe_sigma_*),
+// a strong prior that keeps the window from moving a hand-set pose away.
 //
 // Why this form (scripts/bench_window.sh, handheld-like binocular sequences): with one
 // constant-velocity term and one Cauchy loss on the whole 6-vector, translation jitter fell by
@@ -72,6 +75,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <deque>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -79,6 +83,7 @@
 #include "bcot/core/status.h"
 #include "bcot/optim/frame_problem.h"
 #include "bcot/optim/motion_prior_cost.h"
+#include "bcot/optim/pose_gaussian_cost.h"
 
 namespace bcot {
 
@@ -133,6 +138,11 @@ struct WindowProblemOptions {
   // window, in place of its region terms; false = the region terms (whose minimum is biased
   // under shaded rims and pulls the window back towards it).
   bool edge_posterior = true;
+  // Prior of an anchored frame (a keyframe) toward its hand-set pose: σ of the translation
+  // (mm, each axis of the object-centred frame) and of the rotation (deg); finite, > 0. Set to
+  // the accuracy the keyframes were set with; small = the window keeps the keyframe pose.
+  double keyframe_sigma_translation_mm = 0.5;
+  double keyframe_sigma_rotation_deg = 0.25;
   // Threads Ceres may use; >= 1.
   int num_threads = 1;
 
@@ -167,15 +177,20 @@ class WindowProblem {
   // Refines (*rig_from_objcentre)[first, end) in one problem (see the header comment):
   // frame_views[t − first] are frame t's templates (empty = held constant); the C =
   // options().ContextFrames() poses before first and after end, where they exist, condition the
-  // priors and are held constant.
+  // priors and are held constant. `anchors` (may be null): rig_from_objcentre by frame of the
+  // anchored frames (see the header comment).
   // CHECKs 0 <= first < end <= size and frame_views.size() == end − first.
   WindowSummary Solve(int first, int end,
                       const std::vector<const std::vector<ViewLinearisation>*>& frame_views,
-                      std::vector<Eigen::Isometry3d>* rig_from_objcentre) const;
+                      std::vector<Eigen::Isometry3d>* rig_from_objcentre,
+                      const std::map<int, Eigen::Isometry3d>* anchors = nullptr) const;
 
   const WindowProblemOptions& options() const { return options_; }
 
  private:
+  // The Gaussian of an anchor at `rig_from_objcentre` with the keyframe sigmas.
+  PoseGaussian AnchorGaussian(const Eigen::Isometry3d& rig_from_objcentre) const;
+
   WindowProblemOptions options_;
 };
 
@@ -189,6 +204,9 @@ class WindowSmoother {
   // Appends the next frame: its per-frame pose and templates (empty when its solve failed).
   // Solves every window whose frames and look-ahead have all arrived.
   void Push(const Eigen::Isometry3d& rig_from_objcentre, std::vector<ViewLinearisation> views);
+  // Anchors frames (rig_from_objcentre by frame index) toward hand-set poses; call before the
+  // first Push.
+  void SetAnchors(std::map<int, Eigen::Isometry3d> anchors);
   // Solves the remaining windows; call once after the last Push.
   void Finish();
 
@@ -209,6 +227,7 @@ class WindowSmoother {
   int next_start_ = 0;
   bool finished_ = false;
   std::vector<WindowSummary> windows_;
+  std::map<int, Eigen::Isometry3d> anchors_;
 };
 
 }  // namespace bcot
