@@ -130,8 +130,8 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
   AddConfigFlags(command, &flags->config, ExportOptionSchema());
   command
       ->add_option("annotation", flags->annotation_dir,
-                   "Annotation directory of the sequence (<camera>/pose.txt or "
-                   "rig_from_object.txt; quality.json's verdict is checked)")
+                   "Annotation directory of the sequence (its rig_from_object.txt; "
+                   "quality.json's verdict is checked)")
       ->required();
   command->add_option("--sequence", flags->sequence_dir, "Sequence directory (rig.yaml, frames)")
       ->required();
@@ -152,8 +152,7 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::Range(1, 1000));
   command->add_flag("--include-rejected", flags->include_rejected,
                     "Export an annotation its quality report rejected");
-  command->add_flag("--overwrite", flags->overwrite,
-                    "Replace an existing output folder (same as --set overwrite=true)");
+  command->add_flag("--overwrite", flags->overwrite, "Replace an existing output folder");
   command->add_flag("--quiet", flags->quiet, "No summary line on stderr (errors only)");
   command->callback([flags, exit_code] { *exit_code = RunExport(*flags); });
 }

@@ -117,7 +117,7 @@ Status WriteModel(const fs::path& models_dir, int obj_id, const Mesh& model, boo
     BCOT_ASSIGN_OR_RETURN(const std::string existing, ReadTextFile(*model_path));
     if (existing != ply) {
       return Status::InvalidConfig(fmt::format(
-          "{}: holds another model; set bop.obj_id to a free id or set overwrite", *model_path));
+          "{}: holds another model; set bop.obj_id to a free id or pass --overwrite", *model_path));
     }
   }
   BCOT_RETURN_IF_ERROR(WriteFileAtomic(*model_path, ply));

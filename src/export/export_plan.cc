@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "bcot/core/annotation_poses.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/image_io.h"
 #include "bcot/core/pose_io.h"
@@ -32,19 +33,13 @@ void UndistortMaps(const Camera& camera, cv::Mat1f* map_x, cv::Mat1f* map_y) {
   }
 }
 
+// The camera's poses from the annotation's one source of truth, rig_from_object.txt (so a hand
+// edit of it is exported; the per-camera files are derived and never read back).
 StatusOr<std::vector<Eigen::Isometry3d>> ReadCamFromObject(const std::string& annotation_dir,
                                                            const RigCamera& rig_camera) {
-  const fs::path per_camera = fs::path(annotation_dir) / rig_camera.camera.name / "pose.txt";
-  std::error_code error;
-  if (fs::exists(per_camera, error)) return ReadPoseFile(per_camera.string());
-  const fs::path rig_path = fs::path(annotation_dir) / "rig_from_object.txt";
-  if (!fs::exists(rig_path, error)) {
-    return Status::NotFound(
-        fmt::format("{}: annotation not found (nor {})", rig_path.string(), per_camera.string()));
-  }
-  BCOT_ASSIGN_OR_RETURN(std::vector<Eigen::Isometry3d> poses, ReadPoseFile(rig_path.string()));
-  for (Eigen::Isometry3d& pose : poses) pose = rig_camera.cam_from_rig * pose;
-  return poses;
+  BCOT_ASSIGN_OR_RETURN(const std::vector<Eigen::Isometry3d> rig_from_object,
+                        ReadAnnotationPoses(annotation_dir));
+  return CamFromObjectPoses(rig_camera.cam_from_rig, rig_from_object);
 }
 
 StatusOr<std::vector<int>> SelectFrames(const ExportOptions& options, int num_frames) {
@@ -180,7 +175,7 @@ Status PrepareEmptyFolder(const fs::path& dir, bool overwrite) {
   if (fs::exists(dir, error) && !fs::is_empty(dir, error)) {
     if (!overwrite) {
       return Status::InvalidConfig(
-          fmt::format("{}: exists and is not empty; set overwrite to replace it", dir.string()));
+          fmt::format("{}: exists and is not empty; pass --overwrite to replace it", dir.string()));
     }
     fs::remove_all(dir, error);
     if (error) {
