@@ -22,10 +22,5 @@ namespace bcot {
 const char* BcotVersion() { return \"${version}\"; }
 }  // namespace bcot
 ")
-set(old "")
-if(EXISTS "${OUTPUT}")
-  file(READ "${OUTPUT}" old)
-endif()
-if(NOT old STREQUAL text)
-  file(WRITE "${OUTPUT}" "${text}")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/write_if_changed.cmake")
+bcot_write_if_changed("${OUTPUT}" "${text}")

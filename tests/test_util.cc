@@ -63,6 +63,26 @@ int RunCommand(const std::string& command, std::string* output) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+void MakeTinyAnnotatedSequence(const std::string& sequence_dir, int num_frames,
+                               const std::string& annotation_dir,
+                               const std::string& annotate_overrides) {
+  std::string output;
+  const int synth =
+      RunCommand(BcotBinary() + " synth --quiet --config " + SourcePath("configs/synth/demo.yaml") +
+                     " --out " + sequence_dir +
+                     " --set cameras.width=160 --set cameras.height=128 --set distractors.count=1" +
+                     " --set render.object_samples_per_axis=2 --set motion.num_frames=" +
+                     std::to_string(num_frames),
+                 &output);
+  BCOT_CHECK(synth == 0 && "bcot synth failed");
+  if (annotation_dir.empty()) return;
+  const int annotate =
+      RunCommand(BcotBinary() + " annotate --quiet " + sequence_dir + " --out " + annotation_dir +
+                     " --config " + SourcePath("configs/track.yaml") + " " + annotate_overrides,
+                 &output);
+  BCOT_CHECK((annotate == 0 || annotate == kExitRejected) && "bcot annotate failed");
+}
+
 double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return RotationDistanceDeg(a.linear(), b.linear());
 }

@@ -40,6 +40,14 @@ void WriteText(const std::string& path, const std::string& content);
 // Runs a shell command, returns its exit code; stdout+stderr go to `output` when non-null.
 int RunCommand(const std::string& command, std::string* output = nullptr);
 
+// `bcot synth` of the demo scene at 160×128 with `num_frames` frames into `sequence_dir`, then,
+// when `annotation_dir` is not empty, `bcot annotate` of it with configs/track.yaml and the
+// `annotate_overrides` ("--set key=value ..."; accepted or rejected both do). CHECK-fails when
+// a command fails.
+void MakeTinyAnnotatedSequence(const std::string& sequence_dir, int num_frames,
+                               const std::string& annotation_dir,
+                               const std::string& annotate_overrides = "");
+
 // A unit vector in a uniformly random direction (normalised standard normal draws).
 inline Eigen::Vector3d RandomUnitVector(std::mt19937& rng) {
   std::normal_distribution<double> normal;

@@ -21,6 +21,7 @@ void AddAnnotateCommand(CLI::App& app, int* exit_code);
 void AddBatchCommand(CLI::App& app, int* exit_code);
 void AddReportCommand(CLI::App& app, int* exit_code);
 void AddInitCommand(CLI::App& app, int* exit_code);
+void AddReviewCommand(CLI::App& app, int* exit_code);
 
 // Common flags of commands that read a YAML config: --config FILE, --set key=value (repeatable).
 struct ConfigFlags {

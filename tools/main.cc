@@ -104,6 +104,7 @@ int main(int argc, char** argv) {
   bcot::tools::AddAnnotateCommand(app, &exit_code);
   bcot::tools::AddBatchCommand(app, &exit_code);
   bcot::tools::AddReportCommand(app, &exit_code);
+  bcot::tools::AddReviewCommand(app, &exit_code);
   app.footer(
       "bcot help <command> (or bcot <command> --help) lists a command's options.\nExit codes: 0 "
       "success (annotation accepted), 1 failure, 2 usage or configuration error, 3 annotation "

@@ -1,0 +1,57 @@
+// What `bcot review` serves: one sequence, optionally one annotation of it, and the Embree caster
+// of its object. Loaded and validated once; afterwards every method is const and thread-safe
+// (the HTTP server answers requests from several threads).
+//
+// The JSON documents are described in docs/review.md. Images are always the sequence's own
+// files, addressed by a validated ReviewTarget, never by a path from a request.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bcot/core/sequence.h"
+#include "bcot/core/status.h"
+#include "bcot/render/mesh.h"
+#include "bcot/render/ray_caster.h"
+#include "bcot/review/review_annotation.h"
+#include "bcot/review/review_request.h"
+
+namespace bcot {
+
+class ReviewSession {
+ public:
+  // Loads the sequence in `sequence_dir` (init_pose.txt not required) and, when
+  // `annotation_dir` is not empty, its annotation. Errors name the file at fault.
+  static StatusOr<std::unique_ptr<ReviewSession>> Load(const std::string& sequence_dir,
+                                                       const std::string& annotation_dir);
+
+  const Sequence& sequence() const { return sequence_; }
+  const std::optional<ReviewAnnotation>& annotation() const { return annotation_; }
+
+  // The frame index and camera of a request, validated against the sequence.
+  StatusOr<ReviewTarget> Resolve(const std::string& frame_text,
+                                 const std::string& camera_name) const;
+
+  // /api/sequence: directory, frame count, cameras (name, size), annotation directory or null,
+  // whether the images show a contour.
+  std::string SequenceJson() const;
+  // /api/quality: the quality timeline, or {"available": false} without one.
+  std::string QualityJson() const;
+  // /api/frame/N/diagnostics: frames.csv's row of `frame` as {column: value}, or
+  // {"available": false}. `frame` must be a valid index (CHECKed).
+  std::string DiagnosticsJson(int frame) const;
+  // /api/frame/N/view/CAM.jpg: the frame image of the target's camera, with the silhouette
+  // contour of the annotated pose drawn in green when there is an annotation.
+  StatusOr<std::vector<unsigned char>> ViewJpeg(const ReviewTarget& target, int jpeg_quality) const;
+
+ private:
+  ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> annotation, const Mesh& mesh);
+
+  Sequence sequence_;
+  std::optional<ReviewAnnotation> annotation_;
+  RayCaster caster_;
+};
+
+}  // namespace bcot

@@ -1,0 +1,171 @@
+#include "bcot/review/review_server.h"
+
+#include <fmt/format.h>
+#include <httplib.h>
+
+#include <atomic>
+#include <mutex>
+#include <thread>
+
+#include "bcot/review/review_assets.h"
+
+namespace bcot {
+namespace {
+
+int HttpStatusOf(const Status& status) {
+  switch (status.code()) {
+    case StatusCode::kInvalidInput:
+    case StatusCode::kInvalidConfig:
+      return 400;
+    case StatusCode::kNotFound:
+      return 404;
+    default:
+      return 500;
+  }
+}
+
+void SetError(const Status& status, httplib::Response& response) {
+  response.status = HttpStatusOf(status);
+  response.set_content(status.message() + "\n", "text/plain; charset=utf-8");
+}
+
+void SetJson(const std::string& json, httplib::Response& response) {
+  response.set_header("Cache-Control", "no-store");
+  response.set_content(json, "application/json");
+}
+
+// Serves the embedded asset `name`, or 404.
+void ServeAsset(const std::string& name, httplib::Response& response) {
+  const ReviewAsset* asset = FindReviewAsset(name);
+  if (asset == nullptr) {
+    SetError(Status::NotFound("no such page file"), response);
+    return;
+  }
+  response.set_content(asset->content.data(), asset->content.size(),
+                       ReviewAssetContentType(asset->name));
+}
+
+}  // namespace
+
+struct ReviewServer::Impl {
+  Impl(const ReviewSession& session_in, const ReviewOptions& options_in)
+      : session(session_in), options(options_in) {}
+
+  void AddRoutes();
+
+  const ReviewSession& session;
+  const ReviewOptions options;
+  httplib::Server server;
+  int port = -1;
+  // Listen/Stop handshake: a Stop() before, during or after Listen() always ends it.
+  std::mutex mutex;
+  bool listening = false;
+  bool stop_requested = false;
+  std::atomic<bool> done{false};
+  std::thread thread;  // of Start()
+};
+
+void ReviewServer::Impl::AddRoutes() {
+  if (options.LoopbackOnly()) {
+    server.set_pre_routing_handler(
+        [](const httplib::Request& request, httplib::Response& response) {
+          if (IsLoopbackAddress(request.remote_addr))
+            return httplib::Server::HandlerResponse::Unhandled;
+          response.status = 403;
+          response.set_content("bcot review answers loopback clients only (see --host)\n",
+                               "text/plain; charset=utf-8");
+          return httplib::Server::HandlerResponse::Handled;
+        });
+  }
+  server.Get("/", [](const httplib::Request&, httplib::Response& response) {
+    ServeAsset("index.html", response);
+  });
+  server.Get(R"(/(review\.js|review\.css))",
+             [](const httplib::Request& request, httplib::Response& response) {
+               ServeAsset(request.matches[1], response);
+             });
+  server.Get("/api/sequence", [this](const httplib::Request&, httplib::Response& response) {
+    SetJson(session.SequenceJson(), response);
+  });
+  server.Get("/api/quality", [this](const httplib::Request&, httplib::Response& response) {
+    SetJson(session.QualityJson(), response);
+  });
+  server.Get(R"(/api/frame/([^/]+)/diagnostics)", [this](const httplib::Request& request,
+                                                         httplib::Response& response) {
+    const StatusOr<int> frame = ParseFrameIndex(request.matches[1], session.sequence().num_frames);
+    if (!frame.ok()) return SetError(frame.status(), response);
+    SetJson(session.DiagnosticsJson(*frame), response);
+  });
+  server.Get(R"(/api/frame/([^/]+)/view/([^/]+)\.jpg)", [this](const httplib::Request& request,
+                                                               httplib::Response& response) {
+    const StatusOr<ReviewTarget> target = session.Resolve(request.matches[1], request.matches[2]);
+    if (!target.ok()) return SetError(target.status(), response);
+    const StatusOr<std::vector<unsigned char>> jpeg =
+        session.ViewJpeg(*target, options.jpeg_quality);
+    if (!jpeg.ok()) return SetError(jpeg.status(), response);
+    response.set_header("Cache-Control", "no-store");
+    response.set_content(reinterpret_cast<const char*>(jpeg->data()), jpeg->size(), "image/jpeg");
+  });
+}
+
+ReviewServer::ReviewServer(const ReviewSession& session, const ReviewOptions& options)
+    : impl_(std::make_unique<Impl>(session, options)) {
+  BCOT_CHECK(options.Validate().ok());
+  impl_->AddRoutes();
+}
+
+ReviewServer::~ReviewServer() { Stop(); }
+
+StatusOr<int> ReviewServer::Bind() {
+  const ReviewOptions& options = impl_->options;
+  if (options.port == 0) {
+    impl_->port = impl_->server.bind_to_any_port(options.host);
+  } else if (impl_->server.bind_to_port(options.host, options.port)) {
+    impl_->port = options.port;
+  }
+  if (impl_->port <= 0) {
+    impl_->port = -1;
+    return Status::IoError(fmt::format("cannot listen on {}:{} (address in use or not local?)",
+                                       options.host, options.port));
+  }
+  return impl_->port;
+}
+
+std::string ReviewServer::Url() const {
+  const std::string& host = impl_->options.host;
+  const bool ipv6 = host.find(':') != std::string::npos;
+  return fmt::format("http://{}:{}/", ipv6 ? "[" + host + "]" : host, impl_->port);
+}
+
+void ReviewServer::Listen() {
+  BCOT_CHECK(impl_->port > 0);
+  {
+    std::lock_guard<std::mutex> lock(impl_->mutex);
+    if (impl_->stop_requested) return;
+    impl_->listening = true;
+  }
+  impl_->server.listen_after_bind();
+  impl_->done = true;
+}
+
+void ReviewServer::Start() {
+  BCOT_CHECK(!impl_->thread.joinable());
+  impl_->thread = std::thread([this] { Listen(); });
+}
+
+void ReviewServer::Stop() {
+  bool listening = false;
+  {
+    std::lock_guard<std::mutex> lock(impl_->mutex);
+    impl_->stop_requested = true;
+    listening = impl_->listening;
+  }
+  if (listening) {
+    // Listen() has been entered: wait until httplib runs (or has ended), then stop it.
+    while (!impl_->server.is_running() && !impl_->done) std::this_thread::yield();
+    impl_->server.stop();
+  }
+  if (impl_->thread.joinable()) impl_->thread.join();
+}
+
+}  // namespace bcot

@@ -1,0 +1,119 @@
+#include "bcot/review/review_session.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "bcot/core/image_io.h"
+#include "bcot/render/contour_drawing.h"
+
+namespace bcot {
+namespace {
+
+using nlohmann::ordered_json;
+
+// NaN and infinities as null (JSON has no such numbers).
+ordered_json Number(double value) {
+  return std::isfinite(value) ? ordered_json(value) : ordered_json(nullptr);
+}
+
+ordered_json TimelineJson(const QualityTimeline& timeline) {
+  ordered_json json = {{"available", true},
+                       {"threshold_px", timeline.threshold_px},
+                       {"statistic", timeline.statistic},
+                       {"bad_frames", timeline.BadFrames()}};
+  for (size_t v = 0; v < timeline.view_names.size(); ++v) {
+    ordered_json errors = ordered_json::array();
+    for (double error : timeline.error_px[v]) errors.push_back(Number(error));
+    ordered_json bad = ordered_json::array();
+    ordered_json verifiable = ordered_json::array();
+    for (size_t f = 0; f < timeline.bad[v].size(); ++f) {
+      if (timeline.bad[v][f]) bad.push_back(f);
+      if (!timeline.verifiable[v][f]) verifiable.push_back(f);
+    }
+    json["views"].push_back({{"name", timeline.view_names[v]},
+                             {"error_px", errors},
+                             {"bad_frames", bad},
+                             {"unverifiable_frames", verifiable}});
+  }
+  return json;
+}
+
+}  // namespace
+
+ReviewSession::ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> annotation,
+                             const Mesh& mesh)
+    : sequence_(std::move(sequence)), annotation_(std::move(annotation)), caster_(mesh) {}
+
+StatusOr<std::unique_ptr<ReviewSession>> ReviewSession::Load(const std::string& sequence_dir,
+                                                             const std::string& annotation_dir) {
+  BCOT_ASSIGN_OR_RETURN(Sequence sequence, LoadSequence(sequence_dir, /*require_init_pose=*/false));
+  std::optional<ReviewAnnotation> annotation;
+  if (!annotation_dir.empty()) {
+    BCOT_ASSIGN_OR_RETURN(annotation, LoadReviewAnnotation(annotation_dir, sequence.num_frames));
+  }
+  BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
+                        Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
+  return std::unique_ptr<ReviewSession>(
+      new ReviewSession(std::move(sequence), std::move(annotation), mesh));
+}
+
+StatusOr<ReviewTarget> ReviewSession::Resolve(const std::string& frame_text,
+                                              const std::string& camera_name) const {
+  return ResolveReviewTarget(frame_text, camera_name, sequence_.num_frames, sequence_.rig);
+}
+
+std::string ReviewSession::SequenceJson() const {
+  ordered_json json = {{"sequence", sequence_.dir},
+                       {"num_frames", sequence_.num_frames},
+                       {"annotation", annotation_ ? ordered_json(annotation_->dir) : nullptr},
+                       {"contour", annotation_.has_value()},
+                       {"cameras", ordered_json::array()}};
+  for (const RigCamera& camera : sequence_.rig.cameras()) {
+    json["cameras"].push_back({{"name", camera.camera.name},
+                               {"width", camera.camera.width},
+                               {"height", camera.camera.height}});
+  }
+  return json.dump();
+}
+
+std::string ReviewSession::QualityJson() const {
+  if (!annotation_ || !annotation_->quality) return ordered_json{{"available", false}}.dump();
+  return TimelineJson(*annotation_->quality).dump();
+}
+
+std::string ReviewSession::DiagnosticsJson(int frame) const {
+  BCOT_CHECK(frame >= 0 && frame < sequence_.num_frames);
+  if (!annotation_ || !annotation_->diagnostics) {
+    return ordered_json{{"available", false}, {"frame", frame}}.dump();
+  }
+  const FrameDiagnostics& diagnostics = *annotation_->diagnostics;
+  ordered_json values;
+  for (size_t c = 0; c < diagnostics.columns.size(); ++c) {
+    values[diagnostics.columns[c]] = diagnostics.rows[frame][c];
+  }
+  return ordered_json{{"available", true}, {"frame", frame}, {"values", values}}.dump();
+}
+
+StatusOr<std::vector<unsigned char>> ReviewSession::ViewJpeg(const ReviewTarget& target,
+                                                             int jpeg_quality) const {
+  BCOT_CHECK(target.frame >= 0 && target.frame < sequence_.num_frames);
+  BCOT_CHECK(target.camera >= 0 && target.camera < sequence_.rig.size());
+  const RigCamera& camera = sequence_.rig[target.camera];
+  BCOT_ASSIGN_OR_RETURN(
+      cv::Mat3b image,
+      ReadCameraImage(sequence_.image_paths[target.camera][target.frame], camera.camera));
+  if (annotation_) {
+    const Eigen::Isometry3d cam_from_object =
+        camera.cam_from_rig * annotation_->rig_from_object[target.frame];
+    DrawContour(caster_.ExtractContour(camera.camera, cam_from_object), cv::Scalar(0, 255, 0),
+                &image);
+  }
+  std::vector<unsigned char> jpeg;
+  if (!cv::imencode(".jpg", image, jpeg, {cv::IMWRITE_JPEG_QUALITY, jpeg_quality})) {
+    return Status::Internal("cannot encode a JPEG frame image");
+  }
+  return jpeg;
+}
+
+}  // namespace bcot

@@ -1,0 +1,189 @@
+// The endpoints of `bcot review`'s server, through httplib's client, on a tiny synthetic
+// sequence annotated with configs/track.yaml (and the same sequence without annotation).
+#include "bcot/review/review_server.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "bcot/core/file_util.h"
+#include "test_util.h"
+
+namespace bcot {
+namespace {
+
+using nlohmann::json;
+using ::testing::HasSubstr;
+
+constexpr int kFrames = 4;
+
+// A ReviewServer on an ephemeral loopback port, answering on its own thread.
+class RunningServer {
+ public:
+  explicit RunningServer(const ReviewSession& session) {
+    ReviewOptions options;
+    options.port = 0;
+    server_ = std::make_unique<ReviewServer>(session, options);
+    const StatusOr<int> port = server_->Bind();
+    BCOT_CHECK(port.ok());
+    port_ = *port;
+    server_->Start();
+  }
+  httplib::Client Client() const { return httplib::Client("127.0.0.1", port_); }
+  const ReviewServer& server() const { return *server_; }
+
+ private:
+  std::unique_ptr<ReviewServer> server_;
+  int port_ = 0;
+};
+
+class ReviewServerTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new test::TempDir();
+    test::MakeTinyAnnotatedSequence(dir_->File("seq"), kFrames, dir_->File("ann"));
+    annotated_ = ReviewSession::Load(dir_->File("seq"), dir_->File("ann"))->release();
+    bare_ = ReviewSession::Load(dir_->File("seq"), "")->release();
+  }
+  static void TearDownTestSuite() {
+    delete annotated_;
+    delete bare_;
+    delete dir_;
+  }
+
+  static json GetJson(httplib::Client& client, const std::string& path) {
+    const httplib::Result result = client.Get(path);
+    BCOT_CHECK(result && result->status == 200);
+    EXPECT_EQ(result->get_header_value("Content-Type"), "application/json");
+    return json::parse(result->body);
+  }
+  static cv::Mat GetImage(httplib::Client& client, const std::string& path) {
+    const httplib::Result result = client.Get(path);
+    BCOT_CHECK(result && result->status == 200);
+    EXPECT_EQ(result->get_header_value("Content-Type"), "image/jpeg");
+    const std::vector<unsigned char> bytes(result->body.begin(), result->body.end());
+    return cv::imdecode(bytes, cv::IMREAD_COLOR);
+  }
+
+  static test::TempDir* dir_;
+  static ReviewSession* annotated_;
+  static ReviewSession* bare_;
+};
+test::TempDir* ReviewServerTest::dir_ = nullptr;
+ReviewSession* ReviewServerTest::annotated_ = nullptr;
+ReviewSession* ReviewServerTest::bare_ = nullptr;
+
+TEST_F(ReviewServerTest, ServesTheEmbeddedPage) {
+  RunningServer running(*annotated_);
+  httplib::Client client = running.Client();
+  const httplib::Result page = client.Get("/");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_THAT(page->get_header_value("Content-Type"), HasSubstr("text/html"));
+  EXPECT_THAT(page->body, HasSubstr("<script src=\"review.js\">"));
+  for (const char* asset : {"/review.js", "/review.css"}) {
+    const httplib::Result result = client.Get(asset);
+    ASSERT_TRUE(result) << asset;
+    EXPECT_EQ(result->status, 200) << asset;
+    EXPECT_FALSE(result->body.empty()) << asset;
+  }
+  EXPECT_THAT(running.server().Url(), HasSubstr("http://127.0.0.1:"));
+}
+
+TEST_F(ReviewServerTest, SequenceQualityAndDiagnosticsOfAnAnnotation) {
+  RunningServer running(*annotated_);
+  httplib::Client client = running.Client();
+  const json sequence = GetJson(client, "/api/sequence");
+  EXPECT_EQ(sequence["num_frames"], kFrames);
+  EXPECT_EQ(sequence["annotation"], dir_->File("ann"));
+  EXPECT_TRUE(sequence["contour"]);
+  ASSERT_EQ(sequence["cameras"].size(), 2u);
+  EXPECT_EQ(sequence["cameras"][0]["name"], "cam0");
+  EXPECT_EQ(sequence["cameras"][1]["width"], 160);
+
+  // The timeline repeats quality.json: per view the judged statistic and the bad frames.
+  const json quality = GetJson(client, "/api/quality");
+  const json stored = json::parse(*ReadTextFile(dir_->File("ann/quality.json")));
+  EXPECT_TRUE(quality["available"]);
+  EXPECT_EQ(quality["threshold_px"], stored["options"]["threshold_px"]);
+  ASSERT_EQ(quality["views"].size(), stored["views"].size());
+  const std::string key = stored["options"]["statistic"].get<std::string>() + "_px";
+  std::vector<int> bad_frames;
+  for (int f = 0; f < kFrames; ++f) {
+    bool bad = false;
+    for (size_t v = 0; v < stored["views"].size(); ++v) {
+      EXPECT_EQ(quality["views"][v]["error_px"][f], stored["frames"][f]["views"][v][key]);
+      bad = bad || stored["frames"][f]["views"][v]["bad"].get<bool>();
+    }
+    if (bad) bad_frames.push_back(f);
+  }
+  EXPECT_EQ(quality["bad_frames"].get<std::vector<int>>(), bad_frames);
+
+  const json diagnostics = GetJson(client, "/api/frame/2/diagnostics");
+  EXPECT_TRUE(diagnostics["available"]);
+  EXPECT_EQ(diagnostics["values"]["frame"], "2");
+  EXPECT_TRUE(diagnostics["values"].contains("termination"));
+}
+
+// The annotated image is the sequence's image with a green contour drawn on it; without an
+// annotation it is the plain image.
+TEST_F(ReviewServerTest, FrameImagesWithAndWithoutContour) {
+  RunningServer with(*annotated_);
+  RunningServer without(*bare_);
+  httplib::Client client_with = with.Client();
+  httplib::Client client_without = without.Client();
+  for (const char* camera : {"cam0", "cam1"}) {
+    const std::string path = std::string("/api/frame/1/view/") + camera + ".jpg";
+    const cv::Mat contour = GetImage(client_with, path);
+    const cv::Mat plain = GetImage(client_without, path);
+    ASSERT_EQ(contour.size(), cv::Size(160, 128)) << camera;
+    ASSERT_EQ(plain.size(), cv::Size(160, 128)) << camera;
+    cv::Mat channels[3];
+    cv::Mat difference;
+    cv::absdiff(contour, plain, difference);
+    cv::split(difference, channels);
+    EXPECT_GT(cv::countNonZero(channels[1] > 60), 20) << camera << ": no contour drawn";
+  }
+  const json sequence = GetJson(client_without, "/api/sequence");
+  EXPECT_FALSE(sequence["contour"]);
+  EXPECT_TRUE(sequence["annotation"].is_null());
+  EXPECT_FALSE(GetJson(client_without, "/api/quality")["available"]);
+  EXPECT_FALSE(GetJson(client_without, "/api/frame/0/diagnostics")["available"]);
+}
+
+// Frames and cameras come from the sequence; anything else, path-like or not, is an error
+// status and never a file of the disk.
+TEST_F(ReviewServerTest, RejectsBadFramesCamerasAndPaths) {
+  RunningServer running(*annotated_);
+  httplib::Client client = running.Client();
+  const std::vector<std::pair<std::string, int>> requests = {
+      {"/api/frame/4/view/cam0.jpg", 404},
+      {"/api/frame/99999/diagnostics", 404},
+      {"/api/frame/-1/view/cam0.jpg", 400},
+      {"/api/frame/x/view/cam0.jpg", 400},
+      {"/api/frame/1e0/diagnostics", 400},
+      {"/api/frame/0/view/cam9.jpg", 404},
+      {"/api/frame/0/view/..%2Frig.yaml.jpg", 404},
+      {"/api/frame/0/view/%2e%2e.jpg", 404},
+      {"/api/frame/0/view/../../rig.yaml", 404},
+      {"/rig.yaml", 404},
+      {"/cam0/000000.png", 404},
+      {"/index.html/../rig.yaml", 404},
+      {"/review.js/..", 404},
+  };
+  for (const auto& [path, status] : requests) {
+    const httplib::Result result = client.Get(path);
+    ASSERT_TRUE(result) << path;
+    EXPECT_EQ(result->status, status) << path << ": " << result->body;
+    EXPECT_THAT(result->body, ::testing::Not(HasSubstr("cameras:"))) << path;
+  }
+  const httplib::Result camera = client.Get("/api/frame/0/view/cam9.jpg");
+  EXPECT_THAT(camera->body, HasSubstr("cam0, cam1"));
+}
+
+}  // namespace
+}  // namespace bcot
