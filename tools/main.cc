@@ -91,7 +91,7 @@ int HandleHelpAndUnknownCommands(const CLI::App& app, int argc, char** argv) {
 }  // namespace bcot::tools
 
 int main(int argc, char** argv) {
-  CLI::App app{"bcot: multi-view 6DoF pose annotation for textureless objects"};
+  CLI::App app{"bcot: multi-view 6DoF pose annotation for textureless objects", "bcot"};
   app.set_version_flag("--version", bcot::BcotVersion());
   app.require_subcommand(1);
   int exit_code = 0;
@@ -108,7 +108,8 @@ int main(int argc, char** argv) {
   app.footer(
       "bcot help <command> (or bcot <command> --help) lists a command's options.\nExit codes: 0 "
       "success (annotation accepted), 1 failure, 2 usage or configuration error, 3 annotation "
-      "written but rejected by the quality check (annotate, batch, report).");
+      "written but rejected by the quality check (annotate, batch, report; export of a rejected "
+      "annotation).");
   const int early = bcot::tools::HandleHelpAndUnknownCommands(app, argc, argv);
   if (early >= 0) return early;
   try {

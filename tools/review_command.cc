@@ -18,6 +18,7 @@ struct ReviewFlags {
   std::string sequence_dir;
   std::string annotation_dir;
   ReviewOptions options;
+  bool quiet = false;
 };
 
 int RunReview(const ReviewFlags& flags) {
@@ -45,7 +46,9 @@ int RunReview(const ReviewFlags& flags) {
   // The URL alone on stdout (scripts read it); the hint on stderr.
   std::printf("%s\n", server.Url().c_str());
   std::fflush(stdout);
-  std::fprintf(stderr, "bcot review: open the address above in a browser; Ctrl-C stops\n");
+  if (!flags.quiet) {
+    std::fprintf(stderr, "bcot review: open the address above in a browser; Ctrl-C stops\n");
+  }
   server.Listen();
   return 0;
 }
@@ -71,6 +74,7 @@ void AddReviewCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   command->add_option("--port", flags->options.port, "TCP port (0: any free port)")
       ->capture_default_str();
+  command->add_flag("--quiet", flags->quiet, "Only the address on stdout (and errors on stderr)");
   command->callback([flags, exit_code] { *exit_code = RunReview(*flags); });
 }
 

@@ -45,8 +45,8 @@ TEST(CliTest, UnknownCommandIsNamedWithTheCommandList) {
 }
 
 TEST(CliTest, EveryCommandTakesQuiet) {
-  for (const char* command :
-       {"synth", "eval", "calibrate", "capture", "init", "annotate", "batch", "report"}) {
+  for (const char* command : {"synth", "export", "eval", "calibrate", "capture", "init", "annotate",
+                              "batch", "report", "review"}) {
     std::string output;
     EXPECT_EQ(RunCommand(BcotBinary() + " help " + command, &output), 0) << command;
     EXPECT_THAT(output, HasSubstr("--quiet")) << command;
