@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <regex>
+#include <optional>
 #include <string>
 
 #include "bcot/core/status.h"
@@ -36,20 +36,42 @@ struct ExportFlags {
   bool quiet = false;
 };
 
-const std::regex& FrameRangePattern() {
-  static const std::regex* const pattern = new std::regex("^([0-9]{1,9}):([0-9]{1,9})?$");
-  return *pattern;
+// --frames "A:B" (frames A..B inclusive, 0-based, as `bcot annotate --frames`) or "A:" (A to
+// the end); `last` is -1 for "A:". Empty when malformed.
+struct FrameRangeFlag {
+  int first = 0;
+  int last = -1;
+};
+
+std::optional<int> ParseFrameNumber(const std::string& digits) {
+  if (digits.empty() || digits.size() > 9) return std::nullopt;
+  for (const char c : digits) {
+    if (c < '0' || c > '9') return std::nullopt;
+  }
+  return std::stoi(digits);
 }
 
-// CLI11 validator of --frames: "" when `text` is A:B with B > A, or A:.
+std::optional<FrameRangeFlag> ParseFrameRangeFlag(const std::string& text) {
+  const size_t colon = text.find(':');
+  if (colon == std::string::npos) return std::nullopt;
+  const std::optional<int> first = ParseFrameNumber(text.substr(0, colon));
+  if (!first.has_value()) return std::nullopt;
+  const std::string rest = text.substr(colon + 1);
+  if (rest.empty()) return FrameRangeFlag{*first, -1};
+  const std::optional<int> last = ParseFrameNumber(rest);
+  if (!last.has_value()) return std::nullopt;
+  return FrameRangeFlag{*first, *last};
+}
+
+// CLI11 validator of --frames: "" when `text` is A:B with B >= A, or A:.
 std::string FrameRangeProblem(const std::string& text) {
-  std::smatch match;
-  if (!std::regex_match(text, match, FrameRangePattern())) {
-    return fmt::format(
-        "--frames '{}': expected A:B (frames A to B-1, 0-based) or A: (A to the end)", text);
+  const std::optional<FrameRangeFlag> range = ParseFrameRangeFlag(text);
+  if (!range.has_value()) {
+    return fmt::format("--frames '{}': expected A:B (frames A to B, 0-based) or A: (A to the end)",
+                       text);
   }
-  if (match[2].matched && std::stoi(match[2].str()) <= std::stoi(match[1].str())) {
-    return fmt::format("--frames '{}': B must be greater than A", text);
+  if (range->last >= 0 && range->last < range->first) {
+    return fmt::format("--frames '{}': B must not be less than A", text);
   }
   return "";
 }
@@ -60,10 +82,11 @@ std::vector<std::string> FlagOverrides(const ExportFlags& flags) {
   if (!flags.format.empty()) overrides.push_back("format=" + flags.format);
   if (flags.frame_step > 0) overrides.push_back(fmt::format("frame_step={}", flags.frame_step));
   if (!flags.frames.empty()) {
-    std::smatch match;
-    std::regex_match(flags.frames, match, FrameRangePattern());  // validated by CLI11
-    overrides.push_back("first_frame=" + match[1].str());
-    overrides.push_back("end_frame=" + (match[2].matched ? match[2].str() : std::string("-1")));
+    const std::optional<FrameRangeFlag> range = ParseFrameRangeFlag(flags.frames);
+    BCOT_CHECK(range.has_value());  // validated by CLI11
+    overrides.push_back(fmt::format("first_frame={}", range->first));
+    // end_frame is exclusive; -1 = to the end.
+    overrides.push_back(fmt::format("end_frame={}", range->last < 0 ? -1 : range->last + 1));
   }
   if (flags.overwrite) overrides.push_back("overwrite=true");
   return overrides;
@@ -145,7 +168,7 @@ void AddExportCommand(CLI::App& app, int* exit_code) {
       ->check(CLI::IsMember(ExportPresetNames()));
   command
       ->add_option("--frames", flags->frames,
-                   "Frames A:B (A to B-1, 0-based) or A: (to the end); default: all")
+                   "Frames A:B (A to B, 0-based, inclusive) or A: (to the end); default: all")
       ->check(CLI::Validator([](std::string& text) { return FrameRangeProblem(text); }, "A:B",
                              "frame range"));
   command->add_option("--frame-step", flags->frame_step, "Keep every N-th frame (default 1)")
