@@ -2,10 +2,12 @@
 
 Run by scripts/pbr_synth.sh after Blender (system Python with NumPy and OpenCV):
   /usr/bin/python3 scripts/pbr/postprocess.py --spec SPEC --raw OUT/raw --out OUT [--set k=v ...]
-Reads Blender's 16-bit sRGB beauty renders, converts them to linear light, applies the lens
-blur (Gaussian, sensor.lens_blur_px), Gaussian + shot noise (seeded per frame and camera),
-encodes sRGB 8-bit and writes <camera>/NNNNNN.png (or .jpg, 4:2:0, when sensor.jpeg_quality
-> 0); writes the mask pass's alpha as 16-bit coverage gt/mask/<camera>/NNNNNN.png (65535 =
+Reads Blender's scene-linear, unclipped beauty renders (OpenEXR), applies the lens blur
+(Gaussian, sensor.lens_blur_px), Gaussian + shot noise (seeded per frame and camera), and only
+then clips to the sensor's full scale and encodes sRGB 8-bit (a camera's optics blur the light
+before its pixels saturate: clipping last moves a saturated surface's blurred edge towards the
+darker side, as in real images); writes <camera>/NNNNNN.png (or .jpg, 4:2:0, when
+sensor.jpeg_quality > 0); writes the mask pass's alpha as 16-bit coverage gt/mask/<camera>/NNNNNN.png (65535 =
 fully covered by the annotated object alone, unoccluded) and the contract files (rig.yaml,
 object.yaml + model/, init_pose.txt, timestamps.csv, gt/ poses) from the same plan.
 """
@@ -14,15 +16,20 @@ import json
 import os
 import sys
 
-import cv2
-import numpy as np
+os.environ.setdefault("OPENCV_IO_ENABLE_OPENEXR", "1")  # before cv2 is imported
+import cv2  # noqa: E402
+import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import pbr_common as pc  # noqa: E402
 
 
-def srgb_decode(v):
-    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4)
+def read_linear(path):
+    """Blender's scene-linear beauty (OpenEXR, unclipped) as float64 BGR[A]."""
+    image = cv2.imread(path, cv2.IMREAD_UNCHANGED)
+    if image is None or image.dtype != np.float32 or image.ndim != 3:
+        raise RuntimeError(f"{path}: missing or not a float OpenEXR image")
+    return image.astype(np.float64)
 
 
 def srgb_encode(v):
@@ -59,17 +66,12 @@ def main():
     ext = ".jpg" if se["jpeg_quality"] > 0 else ".png"
     for ci, c in enumerate(plan["cameras"]):
         for k in range(plan["frames"]):
-            raw = cv2.imread(os.path.join(args.raw, c["name"], f"{k:06d}.png"), cv2.IMREAD_UNCHANGED)
-            if raw is None or raw.dtype != np.uint16:
-                raise RuntimeError(f"{args.raw}/{c['name']}/{k:06d}.png: missing or not 16-bit")
-            raw = raw.astype(np.float64) / 65535.0
-            if raw.shape[2] == 4:  # window at full quality over the upsampled background
-                bg = cv2.imread(os.path.join(args.raw, "bg", c["name"], f"{k:06d}.png"),
-                                cv2.IMREAD_UNCHANGED).astype(np.float64) / 65535.0
-                bg = cv2.resize(bg, (raw.shape[1], raw.shape[0]), interpolation=cv2.INTER_LINEAR)
-                inside = raw[:, :, 3:4] > 0.5
-                raw = np.where(inside, raw[:, :, :3], bg)
-            lin = srgb_decode(raw)
+            lin = read_linear(os.path.join(args.raw, c["name"], f"{k:06d}.exr"))
+            if lin.shape[2] == 4:  # window at full quality over the upsampled background
+                bg = read_linear(os.path.join(args.raw, "bg", c["name"], f"{k:06d}.exr"))
+                bg = cv2.resize(bg, (lin.shape[1], lin.shape[0]), interpolation=cv2.INTER_LINEAR)
+                inside = lin[:, :, 3:4] > 0.5
+                lin = np.where(inside, lin[:, :, :3], bg[:, :, :3])
             if se["lens_blur_px"] > 0:
                 lin = cv2.GaussianBlur(lin, (0, 0), float(se["lens_blur_px"]),
                                        borderType=cv2.BORDER_REFLECT)

@@ -3,9 +3,10 @@
 Run by scripts/pbr_synth.sh, not directly:
   blender -b --factory-startup --python scripts/pbr/render_blender.py -- \
       --spec configs/pbr/bunny_plastic.json --raw OUT/raw [--set section.key=value ...]
-Writes 16-bit sRGB PNGs OUT/raw/<camera>/NNNNNN.png (the beauty pass, before the sensor
-model of postprocess.py; by default RGBA with alpha 1 only in a window around the object and
-its distractor, the rest coming from the low-resolution OUT/raw/bg/<camera>/NNNNNN.png), OUT/raw/mask/<camera>/NNNNNN.png (RGBA, alpha = coverage of
+Writes scene-linear, unclipped OpenEXR images OUT/raw/<camera>/NNNNNN.exr (the beauty pass,
+before the sensor model of postprocess.py; by default RGBA with alpha 1 only in a window around
+the object and its distractor, the rest coming from the low-resolution
+OUT/raw/bg/<camera>/NNNNNN.exr), OUT/raw/mask/<camera>/NNNNNN.png (16-bit RGBA, alpha = coverage of
 the annotated object alone: every other object hidden, box pixel filter of one pixel, no
 motion blur or depth of field) and OUT/raw/plan.json, OUT/raw/timing.json.
 
@@ -134,10 +135,12 @@ def main():
     r.resolution_y = plan["cameras"][0]["height"]
     r.resolution_percentage = 100
     r.use_border = False
-    r.image_settings.file_format = "PNG"
+    # Beauty: scene-linear OpenEXR, unclipped; the sensor model (postprocess.py) blurs, adds
+    # noise and only then clips, as a camera's optics come before its pixels saturate.
+    r.image_settings.file_format = "OPEN_EXR"
     r.image_settings.color_mode = "RGB"
-    r.image_settings.color_depth = "16"
-    r.image_settings.compression = 15
+    r.image_settings.color_depth = "32"
+    r.image_settings.exr_codec = "ZIP"
     scene.view_settings.view_transform = "Standard"
     scene.view_settings.look = "None"
     scene.view_settings.exposure = float(rs["exposure"])
@@ -307,16 +310,17 @@ def main():
         r.border_min_y, r.border_max_y = (h - y1) / h, (h - y0) / h
 
     def render_to(out):
-        r.filepath = out + ".part.png"
+        part = out + ".part" + os.path.splitext(out)[1]  # Blender keeps the extension it sees
+        r.filepath = part
         bpy.ops.render.render(write_still=True)
-        os.replace(out + ".part.png", out)
+        os.replace(part, out)
 
     timing = {"beauty_s": [], "mask_s": []}
     roi_margin = float(rs["roi_margin_px"])
     for k in range(n):
         scene.frame_set(k)
         for ci, (c, co, _, _) in enumerate(cams):
-            out = os.path.join(args.raw, c["name"], f"{k:06d}.png")
+            out = os.path.join(args.raw, c["name"], f"{k:06d}.exr")
             if os.path.exists(out):
                 continue  # resume an interrupted render
             scene.camera = co
@@ -327,7 +331,7 @@ def main():
                 scene.cycles.samples = int(rs["background_samples"])
                 set_border(None)
                 r.image_settings.color_mode = "RGB"
-                render_to(os.path.join(args.raw, "bg", c["name"], f"{k:06d}.png"))
+                render_to(os.path.join(args.raw, "bg", c["name"], f"{k:06d}.exr"))
                 r.resolution_percentage = 100
                 scene.cycles.samples = int(rs["samples"])
                 points = np.vstack([pc.object_corners_world(plan, k),
@@ -358,6 +362,9 @@ def main():
     scene.cycles.max_bounces = 0
     scene.cycles.pixel_filter_type = "BOX"
     scene.cycles.filter_width = 1.0
+    r.image_settings.file_format = "PNG"
+    r.image_settings.color_depth = "16"
+    r.image_settings.compression = 15
     r.image_settings.color_mode = "RGBA"
     for c, co, _, _ in cams:
         co.data.dof.use_dof = False

@@ -212,6 +212,12 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "edge.min_snr", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.min_snr; }, "",
        "smallest step in units of the profile fit's residual standard deviation")
       .Range(NonNegative());
+  s->Add(
+       "edge.clip_level", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.clip_level; },
+       "",
+       "linear level (1 = full scale) from which a colour sample counts as clipped by the "
+       "sensor and is fitted as censored (> 1 = never)")
+      .Range(Closed(0.5, 2));
 }
 
 void DeclareColorAndTracker(OptionSchema<AnnotateOptions>* s) {

@@ -31,4 +31,20 @@ Eigen::Vector3d SampleLinearRgb(const cv::Mat3b& image, const Eigen::Vector2d& p
   return sum;
 }
 
+Eigen::Vector3d PeakLinearRgb(const cv::Mat3b& image, const Eigen::Vector2d& p) {
+  const std::array<float, 256>& lut = SrgbToLinearTable();
+  const int x0 = static_cast<int>(std::floor(p.x()));
+  const int y0 = static_cast<int>(std::floor(p.y()));
+  const int x1 = p.x() > x0 ? x0 + 1 : x0;
+  const int y1 = p.y() > y0 ? y0 + 1 : y0;
+  Eigen::Vector3d peak = Eigen::Vector3d::Zero();
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const cv::Vec3b& px = image(y, x);
+      peak = peak.cwiseMax(Eigen::Vector3d(lut[px[2]], lut[px[1]], lut[px[0]]));
+    }
+  }
+  return peak;
+}
+
 }  // namespace bcot

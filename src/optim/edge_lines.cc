@@ -41,6 +41,9 @@ Status EdgeLineOptions::Validate() const {
   if (!(min_sigma_px > 0.0) || !std::isfinite(min_sigma_px)) {
     violations.push_back(fmt::format("min_sigma_px = {}, must be finite and > 0", min_sigma_px));
   }
+  if (!(clip_level > 0.0) || std::isnan(clip_level)) {
+    violations.push_back(fmt::format("clip_level = {}, must be > 0", clip_level));
+  }
   return internal::JoinViolations("edge", violations);
 }
 
@@ -192,10 +195,12 @@ EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const Eigen::Vector2d& centre,
   }
   std::vector<Eigen::Vector3d> colors(2 * half + 1);
   Eigen::Vector3d inside = Eigen::Vector3d::Zero(), outside = Eigen::Vector3d::Zero();
+  Eigen::Vector3d peak = Eigen::Vector3d::Zero();
   int inside_count = 0, outside_count = 0;
   for (int k = -half; k <= half; ++k) {
     const double s = k * h;
     colors[k + half] = SampleLinearRgb(image, centre + s * normal);
+    peak = peak.cwiseMax(PeakLinearRgb(image, centre + s * normal));
     if (s <= -1.0) {
       inside += colors[k + half];
       ++inside_count;
@@ -204,8 +209,11 @@ EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const Eigen::Vector2d& centre,
       ++outside_count;
     }
   }
-  const Eigen::Vector3d d =
-      inside / std::max(1, inside_count) - outside / std::max(1, outside_count);
+  Eigen::Vector3d d = inside / std::max(1, inside_count) - outside / std::max(1, outside_count);
+  // Clipped channels carry no contrast (see "clipping" in the header).
+  for (int c = 0; c < 3; ++c) {
+    if (peak[c] >= options.clip_level) d[c] = 0.0;
+  }
   if (!(d.norm() >= options.min_contrast) || d.norm() == 0.0) return EdgeAcross::kAmbiguous;
   const Eigen::Vector3d direction = d.normalized();
   std::vector<double> profile(2 * half + 1);

@@ -73,6 +73,10 @@ TEST(EdgeRefinementTest, SrgbDecodingMatchesTheStandard) {
   const Eigen::Vector3d half = SampleLinearRgb(image, Eigen::Vector2d(0.5, 0.0));
   EXPECT_NEAR(half.x(), 0.5 * table[10], 1e-6);  // R
   EXPECT_NEAR(half.z(), 0.5, 1e-6);              // B
+  // The peak over the pixels a sample mixes: both neighbours at x = 0.5, one at x = 0.
+  EXPECT_NEAR(PeakLinearRgb(image, Eigen::Vector2d(0.5, 0.0)).z(), 1.0, 1e-6);
+  EXPECT_NEAR(PeakLinearRgb(image, Eigen::Vector2d(0.5, 0.0)).x(), table[10], 1e-6);
+  EXPECT_EQ(PeakLinearRgb(image, Eigen::Vector2d(0.0, 0.0)), Eigen::Vector3d::Zero());
   EXPECT_TRUE(CanSampleBilinear(image.size(), Eigen::Vector2d(0.99, 0.99)));
   EXPECT_FALSE(CanSampleBilinear(image.size(), Eigen::Vector2d(1.0, 0.5)));
   EXPECT_FALSE(CanSampleBilinear(image.size(), Eigen::Vector2d(-0.01, 0.5)));

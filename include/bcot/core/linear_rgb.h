@@ -22,4 +22,9 @@ inline bool CanSampleBilinear(const cv::Size& size, const Eigen::Vector2d& p) {
 // CanSampleBilinear(image.size(), p).
 Eigen::Vector3d SampleLinearRgb(const cv::Mat3b& image, const Eigen::Vector2d& p);
 
+// Per channel (R, G, B), the largest linear value among the pixels SampleLinearRgb mixes at `p`
+// (those with a non-zero weight): tells whether a sample rests on a clipped pixel. Same
+// requirement as SampleLinearRgb.
+Eigen::Vector3d PeakLinearRgb(const cv::Mat3b& image, const Eigen::Vector2d& p);
+
 }  // namespace bcot

@@ -15,7 +15,8 @@
 //             a gamma-encoded step is shifted towards its dark side) at c + s·n, bilinear,
 //             s = k·step_px over [−window_px, +window_px];
 //   scalar    p(s) = d̂·I(s) with d the mean colour over s ∈ [−window, −1] minus that over
-//             s ∈ [1, window] (the direction of largest contrast across this line);
+//             s ∈ [1, window] (the direction of largest contrast across this line), without
+//             the channels that are clipped somewhere on the line (below);
 //   start     μ0 = the largest |dp/ds| within |s| <= search_px;
 //   fit       p(s) ≈ a + g·(s − μ0) + b·Φ(z) + k·w·(z·Φ(z) + φ(z)), z = (s − μ)/w, over
 //             |s − μ0| <= fit_half_px by Levenberg-Marquardt on (a, g, b, μ, w, k): a step
@@ -24,6 +25,14 @@
 //             density): exact for piecewise-linear sides, so a shading ramp up to the edge does
 //             not move μ;
 //   variance  σ_μ² = (RSS / (m − 6))·[(JᵀJ)⁻¹]_μμ, floored at min_sigma_px².
+// Clipping. A camera's optics blur the light before its pixels saturate, so where a channel
+// of a bright surface is beyond full scale the recorded blurred step is cut off at its top
+// and its centre moves towards the darker side (a lit, saturated rim is found 0.2–0.4 px
+// outside the object, pulling the pose towards the light; FitEdgeAcrossTest). A channel
+// whose linear value reaches clip_level at any pixel the line's samples are interpolated from
+// is therefore left out of d (its step cannot be located); the line is ambiguous when the
+// remaining channels have less than min_contrast.
+//
 // The line becomes a CorrespondenceLine with mean_px = μ and sigma_px = σ_μ, so the pose stage
 // reuses CorrespondenceLineCostFunction: r = (n·(x_X(T) − x0) − μ)/σ.
 //
@@ -71,6 +80,9 @@ struct EdgeLineOptions {
   // Floor of σ_μ (px): model errors (mesh facets, the contour's linearisation) are not in
   // the fit's noise; > 0.
   double min_sigma_px = 0.1;
+  // Linear level (1 = full scale) at or above which a channel's sample counts as clipped by
+  // the sensor (see "clipping"); > 1 = never.
+  double clip_level = 0.95;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
