@@ -1,5 +1,5 @@
 // bcot annotate <sequence dir> --out DIR [--keyframes FILE] [--frames A:B] [--config FILE]
-//               [--set section.key=value]...
+//               [--set section.key=value]... [--overwrite] [--quiet]
 // Annotates one sequence (see bcot/annotate/annotator.h) with a progress line on stderr.
 #include <fmt/format.h>
 
@@ -84,6 +84,9 @@ void AddAnnotateCommand(CLI::App& app, int* exit_code) {
   command->add_option("--frames", flags->inputs.frames,
                       "A:B: re-annotate frames A..B (inclusive) of the finished annotation in "
                       "--out and splice them in");
+  command->add_flag("--overwrite", flags->inputs.overwrite,
+                    "Write into an --out that holds files bcot annotate does not write (they "
+                    "are left alone); without it such a directory is refused");
   command->add_flag("--quiet", flags->quiet, "No progress on stderr");
   command->callback([flags, exit_code] { *exit_code = RunAnnotate(*flags); });
 }

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "bcot/annotate/done_file.h"
+#include "bcot/annotate/output_dir.h"
 #include "bcot/annotate/splice.h"
 #include "bcot/annotate/tracking_plan.h"
 #include "bcot/core/annotation_poses.h"
@@ -422,7 +423,9 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
       LoadSequenceToAnnotate(std::filesystem::absolute(sequence_dir).lexically_normal().string(),
                              inputs));
   BCOT_ASSIGN_OR_RETURN(const std::string input_hash, SequenceInputHash(sequence));
-  // The output must be writable before the solve, not after it.
+  // The output must be ours and writable before the solve, not after it.
+  BCOT_RETURN_IF_ERROR(
+      CheckAnnotationOutputDir(out_dir, sequence.dir, sequence.rig, inputs.overwrite));
   BCOT_RETURN_IF_ERROR(CheckWritableDirectory(out_dir));
   // A directory holding DONE is complete; take DONE away before anything in it changes.
   BCOT_RETURN_IF_ERROR(RemoveDoneFile(out_dir));

@@ -73,6 +73,53 @@ TEST_F(AnnotateCommandTest, TrackingRunWritesTheOutputContract) {
   }
 }
 
+// --out must be bcot's own: an earlier annotation is written over (rerun with another config),
+// a directory with anything else in it is refused (exit 2, naming the directory and the
+// entry) unless --overwrite, which leaves the foreign file alone; the sequence directory itself
+// is always refused.
+TEST_F(AnnotateCommandTest, OutMustBeAnAnnotationDirectoryUnlessOverwrite) {
+  test::TempDir out;
+  const std::string track = " --config " + test::SourcePath("configs/track.yaml");
+  std::string output;
+  // A new directory, then a rerun into the same one with a different config.
+  ASSERT_EQ(
+      test::RunCommand(Annotate(dir_->File("seq") + " --out " + out.File("ann") + track), &output),
+      0)
+      << output;
+  ASSERT_EQ(test::RunCommand(Annotate(dir_->File("seq") + " --out " + out.File("ann") + track +
+                                      " --set frame.rounds=2"),
+                             &output),
+            0)
+      << output;
+  // A foreign file at the top and one inside a camera folder.
+  for (const std::string foreign : {"holiday.jpg", "cam1/notes.txt"}) {
+    SCOPED_TRACE(foreign);
+    const std::string dir = out.File("with_" + std::to_string(foreign.size()));
+    std::filesystem::copy(out.File("ann"), dir, std::filesystem::copy_options::recursive);
+    ASSERT_TRUE(WriteFileAtomic(dir + "/" + foreign, "mine\n").ok());
+    EXPECT_EQ(test::RunCommand(Annotate(dir_->File("seq") + " --out " + dir + track), &output), 2);
+    EXPECT_EQ(CountLines(output), 1) << output;
+    EXPECT_THAT(output, HasSubstr(dir));
+    EXPECT_THAT(output, HasSubstr("'" + foreign + "'"));
+    EXPECT_THAT(output, HasSubstr("--overwrite"));
+    EXPECT_EQ(test::RunCommand(
+                  Annotate(dir_->File("seq") + " --out " + dir + track + " --overwrite"), &output),
+              0)
+        << output;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/DONE"));
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + foreign));
+  }
+  // The sequence directory, with or without --overwrite.
+  for (const char* flag : {"", " --overwrite"}) {
+    EXPECT_EQ(
+        test::RunCommand(Annotate(dir_->File("seq") + " --out " + dir_->File("seq") + track + flag),
+                         &output),
+        2);
+    EXPECT_THAT(output, HasSubstr("is the sequence directory"));
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_->File("seq/rig_from_object.txt")));
+}
+
 // Progress into a pipe (a log): whole lines, no carriage returns. Every output header carries
 // the version, the time and the config hash of DONE. `bcot report --config` measures with
 // another file's quality options: a threshold no annotation meets is a rejection (exit 3).

@@ -143,6 +143,8 @@ struct AnnotateInputs {
   // `--frames A:B`: re-annotate frames A..B (inclusive) of the finished annotation in out_dir
   // and splice them in (splice.h); empty = annotate the whole sequence.
   std::string frames;
+  // Write into an --out that holds files bcot annotate does not write (output_dir.h).
+  bool overwrite = false;
 };
 
 // LoadSequence with the keyframes of `inputs`; with `require_anchor`, kNotFound when the
