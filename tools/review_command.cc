@@ -1,7 +1,9 @@
-// bcot review <sequence dir> [--annotation DIR] [--host ADDRESS] [--port P]
+// bcot review <sequence dir> [--annotation DIR] [--frame N] [--host ADDRESS] [--port P]
 // Serves a local web page to inspect a sequence and its annotation: every view side by side with
 // the annotated contour, the reprojection-error timeline, bad frames and solver diagnostics
 // (docs/review.md). Runs until interrupted (Ctrl-C).
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -17,6 +19,7 @@ namespace {
 struct ReviewFlags {
   std::string sequence_dir;
   std::string annotation_dir;
+  int frame = 0;
   ReviewOptions options;
   bool quiet = false;
 };
@@ -33,6 +36,12 @@ int RunReview(const ReviewFlags& flags) {
     PrintError("review", session.status().message());
     return session.status().ExitCode();
   }
+  const int num_frames = (*session)->sequence().num_frames;
+  if (flags.frame >= num_frames) {
+    PrintError("review", fmt::format("--frame {}: the sequence has frames 0..{}", flags.frame,
+                                     num_frames - 1));
+    return 2;
+  }
   ReviewServer server(**session, flags.options);
   const StatusOr<int> port = server.Bind();
   if (!port.ok()) {
@@ -44,7 +53,7 @@ int RunReview(const ReviewFlags& flags) {
                  flags.options.host.c_str());
   }
   // The URL alone on stdout (scripts read it); the hint on stderr.
-  std::printf("%s\n", server.Url().c_str());
+  std::printf("%s#frame=%d\n", server.Url().c_str(), flags.frame);
   std::fflush(stdout);
   if (!flags.quiet) {
     std::fprintf(stderr, "bcot review: open the address above in a browser; Ctrl-C stops\n");
@@ -72,6 +81,8 @@ void AddReviewCommand(CLI::App& app, int* exit_code) {
                    "Address to listen on; a non-loopback address (e.g. 0.0.0.0) also accepts "
                    "clients from other machines")
       ->capture_default_str();
+  command->add_option("--frame", flags->frame, "Frame the page opens at (its address says it)")
+      ->check(CLI::NonNegativeNumber);
   command->add_option("--port", flags->options.port, "TCP port (0: any free port)")
       ->capture_default_str();
   command->add_flag("--quiet", flags->quiet, "Only the address on stdout (and errors on stderr)");

@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -97,6 +100,35 @@ std::string FrameRanges(const std::vector<int>& frames) {
     i = j + 1;
   }
   return text;
+}
+
+// `path` as one shell word: as it is when it holds only safe characters, else single-quoted.
+std::string ShellWord(const std::string& path) {
+  const bool safe = !path.empty() && std::all_of(path.begin(), path.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("_./+-=:,@%", c) != nullptr;
+  });
+  if (safe) return path;
+  std::string quoted = "'";
+  for (char c : path) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// The command that opens the annotation in `bcot review` at its first bad frame (else frame 0).
+std::string ReviewCommand(const QualityReport& report, const std::string& annotation_dir) {
+  int first_bad = -1;
+  for (size_t f = 0; f < report.frames.size() && first_bad < 0; ++f) {
+    for (const ViewFrameQuality& q : report.frames[f]) {
+      if (q.bad) first_bad = static_cast<int>(f);
+    }
+  }
+  const std::string command =
+      fmt::format("bcot review {} --annotation {} --frame {}", ShellWord(report.sequence_dir),
+                  ShellWord(std::filesystem::absolute(annotation_dir).lexically_normal().string()),
+                  std::max(first_bad, 0));
+  return fmt::format(
+      "<p class='review-command'>Every view side by side at any frame, with the contour, zoom and "
+      "the error timeline (<code>--frame N</code> opens frame N{}):<br><code>{}</code></p>\n",
+      first_bad >= 0 ? "; this command opens the first bad frame" : "", HtmlEscape(command));
 }
 
 // The frames of view `v` that are bad, and those that cannot be told, as lines for the report.
@@ -211,7 +243,8 @@ std::string QualityCsv(const QualityReport& report) {
 
 StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& sequence,
                                   const RayCaster& caster,
-                                  const std::vector<Eigen::Isometry3d>& rig_from_object) {
+                                  const std::vector<Eigen::Isometry3d>& rig_from_object,
+                                  const std::string& annotation_dir) {
   std::string html = fmt::format(
       "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
       "<title>bcot quality: {0}</title><style>"
@@ -259,7 +292,7 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
                         HtmlEscape(view.name), view.bad_frames, view.unverified_frames,
                         view.median_of_medians_px, view.worst_px);
   }
-  html += "</table>\n";
+  html += "</table>\n" + ReviewCommand(report, annotation_dir);
   for (size_t v = 0; v < report.view_names.size(); ++v) {
     const int rig_index = sequence.rig.Find(report.view_names[v]);
     if (rig_index < 0) {
@@ -303,7 +336,7 @@ Status WriteQualityFiles(const std::string& out_dir, const QualityReport& report
                          const Sequence& sequence, const RayCaster& caster,
                          const std::vector<Eigen::Isometry3d>& rig_from_object) {
   BCOT_ASSIGN_OR_RETURN(const std::string html,
-                        QualityHtml(report, sequence, caster, rig_from_object));
+                        QualityHtml(report, sequence, caster, rig_from_object, out_dir));
   BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/quality.json", QualityJson(report)));
   BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/quality.csv", QualityCsv(report)));
   return WriteFileAtomic(out_dir + "/report.html", html);

@@ -33,7 +33,8 @@ class ReviewBrowserTest : public ::testing::Test {
   }
 
   // Serves the sequence (and annotation) of `dir` and runs the page driver clicking `frame`.
-  static void ExpectPageWorks(const test::TempDir& dir, const std::string& annotation, int frame) {
+  static void ExpectPageWorks(const test::TempDir& dir, const std::string& annotation, int frame,
+                              const std::string& address_suffix = "") {
     const StatusOr<std::unique_ptr<ReviewSession>> session =
         ReviewSession::Load(dir.File("seq"), annotation);
     ASSERT_TRUE(session.ok()) << session.status().message();
@@ -45,10 +46,11 @@ class ReviewBrowserTest : public ::testing::Test {
     const char* artifacts = std::getenv("BCOT_TEST_ARTIFACTS");
     const std::string shots = artifacts != nullptr ? artifacts : dir.path();
     std::string output;
-    const int code = test::RunCommand(
-        "timeout 300 python3 " + test::SourcePath("tests/browser/review_page.py") + " " +
-            kChromium + " " + server.Url() + " " + std::to_string(frame) + " " + shots,
-        &output);
+    const int code =
+        test::RunCommand("timeout 300 python3 " + test::SourcePath("tests/browser/review_page.py") +
+                             " " + kChromium + " '" + server.Url() + address_suffix + "' " +
+                             std::to_string(frame) + " " + shots,
+                         &output);
     EXPECT_EQ(code, 0) << output;
     EXPECT_THAT(output, HasSubstr("ok: no console messages")) << output;
   }
@@ -66,6 +68,13 @@ TEST_F(ReviewBrowserTest, BadFramesAreListedAndShown) {
   test::MakeTinyAnnotatedSequence(dir.File("seq"), kFrames, dir.File("ann"),
                                   "--set quality.threshold_px=0.001");
   ExpectPageWorks(dir, dir.File("ann"), 3);
+}
+
+// `bcot review --frame 6` prints the address with #frame=6: the page opens there.
+TEST_F(ReviewBrowserTest, AddressNamesTheFirstFrameShown) {
+  test::TempDir dir;
+  test::MakeTinyAnnotatedSequence(dir.File("seq"), kFrames, dir.File("ann"));
+  ExpectPageWorks(dir, dir.File("ann"), 2, "#frame=6");
 }
 
 TEST_F(ReviewBrowserTest, SequenceWithoutAnnotation) {

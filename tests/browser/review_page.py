@@ -162,7 +162,8 @@ def run(binary, url, frame, shots):
         try:
             browser.open(url)
             browser.wait_for("document.body?.dataset.ready === 'yes'", 'the page to start')
-            expect_frame(browser, 0)
+            # The page opens at the frame the address names (bcot review --frame N), else 0.
+            expect_frame(browser, int(url.split('#frame=')[1]) if '#frame=' in url else 0)
             # Click the timeline where it draws `frame`.
             x, y = browser.evaluate(f"""(() => {{
                 const rect = document.getElementById('timeline').getBoundingClientRect();

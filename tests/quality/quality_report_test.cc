@@ -365,14 +365,21 @@ TEST_F(QualityOnSynthTest, WritesJsonCsvAndSelfContainedHtml) {
   EXPECT_EQ(verdict->bad_frame_views, 0);
   EXPECT_EQ(verdict->unverified_frame_views, 0);
   EXPECT_THAT(html, HasSubstr("Bad frames (0): none"));
+  // The command that opens this annotation in the workbench (frame 0: nothing is bad).
+  EXPECT_THAT(html, HasSubstr("<code>bcot review " + report->sequence_dir + " --annotation " +
+                              out.path() + " --frame 0</code>"));
 
   // The bad frames of a view are listed as ranges of frame indices, each shaded with a tooltip,
   // and the time axis carries frame ticks (6 frames: every frame).
   QualityReport marked = *report;
   for (int f : {1, 2, 4}) marked.frames[f][0].bad = true;
   marked.frames[5][0].verifiable = false;
-  const StatusOr<std::string> marked_html = QualityHtml(marked, *sequence, caster, *gt);
+  const StatusOr<std::string> marked_html =
+      QualityHtml(marked, *sequence, caster, *gt, "/data/my annotations/seq 1");
   ASSERT_TRUE(marked_html.ok()) << marked_html.status().message();
+  // Opens the first bad frame; a path with a space is quoted for the shell.
+  EXPECT_THAT(*marked_html,
+              HasSubstr("--annotation &#39;/data/my annotations/seq 1&#39; --frame 1</code>"));
   EXPECT_THAT(*marked_html, HasSubstr("Bad frames (3): 1–2, 4"));
   EXPECT_THAT(*marked_html, HasSubstr("Cannot tell (1): 5"));
   EXPECT_THAT(*marked_html, HasSubstr("<title>frame 4: bad, p90"));

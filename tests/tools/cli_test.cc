@@ -1,4 +1,5 @@
 // The `bcot` dispatcher: help, version and usage errors with the documented exit codes.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "bcot/core/version.h"
@@ -51,6 +52,17 @@ TEST(CliTest, EveryCommandTakesQuiet) {
     EXPECT_EQ(RunCommand(BcotBinary() + " help " + command, &output), 0) << command;
     EXPECT_THAT(output, HasSubstr("--quiet")) << command;
   }
+}
+
+// `bcot review --frame N` must name a frame of the sequence: checked before the server starts.
+TEST(CliTest, ReviewFrameOutsideTheSequenceExitsTwo) {
+  test::TempDir dir;
+  test::MakeTinyAnnotatedSequence(dir.File("seq"), 3, "");
+  std::string output;
+  EXPECT_EQ(
+      RunCommand(BcotBinary() + " review " + dir.File("seq") + " --port 0 --frame 3", &output), 2);
+  EXPECT_THAT(output, HasSubstr("--frame 3: the sequence has frames 0..2"));
+  EXPECT_EQ(RunCommand(BcotBinary() + " review " + dir.File("seq") + " --frame -1", &output), 2);
 }
 
 TEST(CliTest, UsageErrorsExitTwo) {

@@ -15,10 +15,12 @@ namespace bcot {
 std::string QualityJson(const QualityReport& report);
 std::string QualityCsv(const QualityReport& report);
 // report.html; reads the worst frames' images and draws the contour of the annotated pose
-// (`caster` holds the sequence's mesh).
+// (`caster` holds the sequence's mesh). `annotation_dir` is where the report is written: the
+// page gives the `bcot review` command that opens this annotation at a frame.
 StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& sequence,
                                   const RayCaster& caster,
-                                  const std::vector<Eigen::Isometry3d>& rig_from_object);
+                                  const std::vector<Eigen::Isometry3d>& rig_from_object,
+                                  const std::string& annotation_dir);
 
 // Writes quality.json, quality.csv and report.html of `report` into `out_dir`, atomically.
 Status WriteQualityFiles(const std::string& out_dir, const QualityReport& report,

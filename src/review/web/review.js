@@ -117,6 +117,14 @@ function showFrame(frame) {
   }
   moveCursor();
   loadDiagnostics(frame);
+  // The address names the frame shown (#frame=N), so it can be shared or reopened there.
+  history.replaceState(null, '', `#frame=${frame}`);
+}
+
+// The frame the address asks for (#frame=N, as `bcot review --frame N` prints it), else 0.
+function frameFromAddress() {
+  const match = /^#frame=(\d+)$/.exec(window.location.hash);
+  return match ? Number(match[1]) : 0;
 }
 
 function step(delta) {
@@ -319,7 +327,7 @@ async function start() {
   bindControls();
   describeQuality();
   drawTimeline();
-  showFrame(0);
+  showFrame(frameFromAddress());
   document.body.dataset.ready = 'yes';
 }
 
