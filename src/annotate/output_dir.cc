@@ -55,7 +55,8 @@ Status CheckAnnotationOutputDir(const std::string& out_dir, const std::string& s
   if (overwrite || !fs::is_directory(out_dir, error)) return Status::Ok();
   const std::set<std::string> files = {
       "DONE",        kRigFromObjectFileName, "frames.csv", "config.resolved.yaml", "quality.json",
-      "quality.csv", "report.html",          "batch.log",  ".batch_config.yaml"};
+      "quality.csv", "report.html",          "batch.log",  ".batch_config.yaml",   "summary.json",
+      "summary.html"};
   std::set<std::string> cameras;
   for (const RigCamera& camera : rig.cameras()) cameras.insert(camera.camera.name);
   std::string foreign = FirstForeignEntry(out_dir, files, cameras);
