@@ -25,6 +25,7 @@
 //             density): exact for piecewise-linear sides, so a shading ramp up to the edge does
 //             not move μ;
 //   variance  σ_μ² = (RSS / (m − 6))·[(JᵀJ)⁻¹]_μμ, floored at min_sigma_px².
+//
 // Clipping. A camera's optics blur the light before its pixels saturate, so where a channel
 // of a bright surface is beyond full scale the recorded blurred step is cut off at its top
 // and its centre moves towards the darker side (a lit, saturated rim is found 0.2–0.4 px
@@ -81,7 +82,7 @@ struct EdgeLineOptions {
   // the fit's noise; > 0.
   double min_sigma_px = 0.1;
   // Linear level (1 = full scale) at or above which a channel's sample counts as clipped by
-  // the sensor (see "clipping"); > 1 = never.
+  // the sensor (see "Clipping" above); > 1 = never.
   double clip_level = 0.95;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
