@@ -216,7 +216,7 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "edge.clip_level", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.clip_level; },
        "",
        "linear level (1 = full scale) from which a colour sample counts as clipped by the "
-       "sensor and is fitted as censored (> 1 = never)")
+       "sensor and is left out of that line's contrast (> 1 = never)")
       .Range(Closed(0.5, 2));
 }
 

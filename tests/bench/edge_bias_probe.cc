@@ -11,6 +11,9 @@
 // a difference between opposite bins (a shift) or from all bins together (a scale, i.e. depth).
 //
 // Usage: edge_bias_probe --sequence DIR [--config FILE] [--set key=value]... [--frames N]
+//                        [--dump FILE]
+// --dump writes one line per measured edge line: camera, frame, bin, centre, normal, μ, σ, then
+// the linear RGB profile (window_px/step_px samples each side, R G B per sample).
 // Prints per camera: lines measured / candidates, and per bin count, mean μ and its standard
 // error (px); then the quantiles of μ per bin over all cameras.
 #include <fmt/format.h>
@@ -25,6 +28,7 @@
 
 #include "bcot/annotate/annotate_options.h"
 #include "bcot/core/image_io.h"
+#include "bcot/core/linear_rgb.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/sequence.h"
 #include "bcot/optim/edge_lines.h"
@@ -79,10 +83,12 @@ int main(int argc, char** argv) {
   std::string sequence_dir, config_path;
   std::vector<std::string> overrides;
   int max_frames = 0;
+  std::string dump_path;
   app.add_option("--sequence", sequence_dir, "Sequence with gt/")->required();
   app.add_option("--config", config_path, "annotate config (its edge: section is used)");
   app.add_option("--set", overrides, "Override of the config (repeatable)");
   app.add_option("--frames", max_frames, "Only the first N frames (0 = all)");
+  app.add_option("--dump", dump_path, "Write every measured line's profile to this file");
   CLI11_PARSE(app, argc, argv);
 
   const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, overrides);
@@ -104,6 +110,9 @@ int main(int argc, char** argv) {
   for (const char* bin : kBins) std::printf(" | %-5s %5s %8s %6s", bin, "n", "mean", "se");
   std::printf(" | %8s\n", "all");
   std::array<Accumulator, 4> total{};
+  std::FILE* dump = dump_path.empty() ? nullptr : std::fopen(dump_path.c_str(), "w");
+  if (!dump_path.empty() && dump == nullptr) return Fail("cannot write " + dump_path);
+  const int half = static_cast<int>(std::floor(edge.window_px / edge.step_px + 1e-9));
   for (int v = 0; v < sequence->rig.size(); ++v) {
     const RigCamera& camera = sequence->rig[v];
     std::array<Accumulator, 4> bins{};
@@ -122,6 +131,16 @@ int main(int argc, char** argv) {
         ++measured;
         bins[BinOf(line.normal)].Add(line.mean_px);
         total[BinOf(line.normal)].Add(line.mean_px);
+        if (dump == nullptr) continue;
+        std::fprintf(dump, "%s %d %s %.3f %.3f %.4f %.4f %+.4f %.4f", camera.camera.name.c_str(), f,
+                     kBins[BinOf(line.normal)], line.centre.x(), line.centre.y(), line.normal.x(),
+                     line.normal.y(), line.mean_px, line.sigma_px);
+        for (int k = -half; k <= half; ++k) {
+          const Eigen::Vector3d rgb =
+              SampleLinearRgb(*image, line.centre + k * edge.step_px * line.normal);
+          std::fprintf(dump, " %.4f %.4f %.4f", rgb.x(), rgb.y(), rgb.z());
+        }
+        std::fprintf(dump, "\n");
       }
     }
     Accumulator all;
@@ -133,6 +152,7 @@ int main(int argc, char** argv) {
     }
     std::printf(" | %+8.3f\n", all.Mean());
   }
+  if (dump != nullptr) std::fclose(dump);
   std::printf("%-6s %9s", "all", "");
   for (const Accumulator& bin : total) {
     std::printf(" | %-5s %5d %+8.3f %6.3f", "", bin.count, bin.Mean(), bin.StandardError());
