@@ -378,6 +378,12 @@ void TintTexture(const std::array<double, 3>& rgb_255, double fraction, cv::Mat3
   }
 }
 
+float SchlickFresnel(float f0, float cos_theta) {
+  const float m = 1.0f - std::clamp(cos_theta, 0.0f, 1.0f);
+  const float m2 = m * m;
+  return f0 + (1.0f - f0) * m2 * m2 * m;
+}
+
 Eigen::Vector3f Shade(const SurfaceMaterial& material, const SceneLight& light,
                       const Eigen::Vector3f& normal, const Eigen::Vector3f& to_viewer) {
   const float n_dot_l = normal.dot(light.to_light);

@@ -1,10 +1,11 @@
 #include "bcot/synth/synth_options.h"
-#include "bcot/core/version.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <string>
+
+#include "bcot/core/version.h"
 
 namespace bcot {
 namespace {
@@ -55,6 +56,11 @@ void DeclareObjectAndCameras(OptionSchema<SynthOptions>* s) {
        "object.shininess", [](auto& o) -> auto& { return o.object.shininess; }, "",
        "Blinn-Phong exponent: larger = smaller, sharper highlights")
       .Range(Closed(1, 10000));
+  s->Add(
+       "object.reflectance", [](auto& o) -> auto& { return o.object.reflectance; }, "",
+       "clear-coat reflectance F0 (Schlick Fresnel; mirrors backdrop and table, 1 at the rim; "
+       "0 = none)")
+      .Range(Closed(0, 1));
   s->Add(
        "object.crease_angle_deg", [](auto& o) -> auto& { return o.object.crease_angle_deg; }, "deg",
        "normals are averaged across edges below this dihedral angle (0 = flat)")
@@ -334,8 +340,8 @@ StatusOr<SynthOptions> ReadSynthOptions(const std::string& path,
 }
 
 std::string FormatSynthOptions(const SynthOptions& options) {
-  return SynthOptionSchema().Emit(options,
-                                  {fmt::format("bcot {}: fully resolved options (bcot {})", "synth", BcotVersion())});
+  return SynthOptionSchema().Emit(
+      options, {fmt::format("bcot {}: fully resolved options (bcot {})", "synth", BcotVersion())});
 }
 
 }  // namespace bcot

@@ -107,10 +107,12 @@ ShadedBody MakeBody(const Mesh& mesh, double crease_angle_deg, const SurfaceMate
   return body;
 }
 
-// Colour of a ray-cast sample of `body` (sample (row, col) of `view`), camera frame.
+// Colour of a ray-cast sample of `body` (sample (row, col) of `view`), camera frame; the
+// shading normal (camera frame) in `shading_normal` when not null.
 Eigen::Vector3f ShadeSample(const ShadedBody& body, const RenderedView& view, int row, int col,
                             const Eigen::Matrix3f& cam_from_object_rotation,
-                            const SceneLight& light_in_cam, const Eigen::Vector3f& point_in_cam) {
+                            const SceneLight& light_in_cam, const Eigen::Vector3f& point_in_cam,
+                            Eigen::Vector3f* shading_normal = nullptr) {
   const int triangle = view.triangle_id(row, col);
   const cv::Vec3f& p = view.point_in_object(row, col);
   const cv::Vec3f& g = view.normal_in_cam(row, col);
@@ -124,6 +126,7 @@ Eigen::Vector3f ShadeSample(const ShadedBody& body, const RenderedView& view, in
     normal = smooth;
   }
   const Eigen::Vector3f to_viewer = -point_in_cam.normalized();
+  if (shading_normal != nullptr) *shading_normal = normal;
   return Shade(body.material, light_in_cam, normal, to_viewer);
 }
 
@@ -270,6 +273,27 @@ void SynthWorld::Impl::RenderRegion(const ViewState& state, int view, const cv::
   const Eigen::Vector3d camera_centre = state.world_from_cam.translation();
   const TexturedPlane& backdrop = backdrops[view];
   const float inv_samples = 1.0f / static_cast<float>(n * n);
+  // The nearest of the view's backdrop and the table along a world ray (null when neither).
+  const auto nearest_plane = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& direction,
+                                 double* depth) -> const TexturedPlane* {
+    const TexturedPlane* plane = nullptr;
+    *depth = backdrop.Intersect(from, direction);
+    if (*depth > 0.0) plane = &backdrop;
+    if (ground) {
+      const double ground_depth = ground->Intersect(from, direction);
+      if (ground_depth > 0.0 && (plane == nullptr || ground_depth < *depth)) {
+        plane = &*ground;
+        *depth = ground_depth;
+      }
+    }
+    return plane;
+  };
+  const auto plane_radiance = [&](const TexturedPlane& plane, const Eigen::Vector3d& point) {
+    const float lambert = SoftLambert(plane.normal.cast<float>().dot(state.light_in_world.to_light),
+                                      state.light_in_world.softness);
+    return Eigen::Vector3f(plane.Albedo(point) * (state.light_in_world.ambient +
+                                                  state.light_in_world.intensity * lambert));
+  };
 
   for (int y = region.y; y < region.y + region.height; ++y) {
     for (int x = region.x; x < region.x + region.width; ++x) {
@@ -310,16 +334,9 @@ void SynthWorld::Impl::RenderRegion(const ViewState& state, int view, const cv::
           // Meshes are always in front of the planes (the object's workspace and the
           // distractors lie between the cameras and their backdrops, above the table), so the
           // planes only matter for samples that miss every mesh.
-          const TexturedPlane* plane = nullptr;
-          double plane_depth = best == -3 ? backdrop.Intersect(camera_centre, ray_in_world) : -1.0;
-          if (plane_depth > 0.0) plane = &backdrop;
-          if (ground && best == -3) {
-            const double ground_depth = ground->Intersect(camera_centre, ray_in_world);
-            if (ground_depth > 0.0 && (plane == nullptr || ground_depth < plane_depth)) {
-              plane = &*ground;
-              plane_depth = ground_depth;
-            }
-          }
+          double plane_depth = -1.0;
+          const TexturedPlane* plane =
+              best == -3 ? nearest_plane(camera_centre, ray_in_world, &plane_depth) : nullptr;
           if (plane != nullptr && plane_depth < best_depth) {
             best = -2;
           }
@@ -327,20 +344,36 @@ void SynthWorld::Impl::RenderRegion(const ViewState& state, int view, const cv::
           Eigen::Vector3f color;
           if (best == -1) {
             const Eigen::Vector3f point_in_cam = (ray_in_cam * best_depth).cast<float>();
+            Eigen::Vector3f normal;
             color = ShadeSample(object, object_view, sample_row, sample_col, object_rotation,
-                                state.light_in_cam, point_in_cam);
+                                state.light_in_cam, point_in_cam, &normal);
+            const float f0 = object.material.reflectance;
+            if (f0 > 0.0f) {
+              // Clear coat: the mirror direction's backdrop or table, Fresnel-weighted (the
+              // object's reflection of itself is left out).
+              const Eigen::Vector3f to_viewer = -point_in_cam.normalized();
+              const float cos_theta = normal.dot(to_viewer);
+              const float fresnel = SchlickFresnel(f0, cos_theta);
+              const Eigen::Vector3f mirror = 2.0f * cos_theta * normal - to_viewer;
+              const Eigen::Vector3d mirror_in_world =
+                  world_from_cam_rotation * mirror.cast<double>().normalized();
+              const Eigen::Vector3d point_in_world = camera_centre + best_depth * ray_in_world;
+              double depth = -1.0;
+              const TexturedPlane* mirrored =
+                  nearest_plane(point_in_world, mirror_in_world, &depth);
+              const Eigen::Vector3f environment =
+                  mirrored != nullptr
+                      ? plane_radiance(*mirrored, point_in_world + depth * mirror_in_world)
+                      : fallback;
+              color = (1.0f - fresnel) * color + fresnel * environment;
+            }
             ++object_hits;
           } else if (best >= 0) {
             const Eigen::Vector3f point_in_cam = (ray_in_cam * best_depth).cast<float>();
             color = ShadeSample(distractors[best], distractor_views[best], sample_row, sample_col,
                                 distractor_rotation[best], state.light_in_cam, point_in_cam);
           } else if (best == -2) {
-            const Eigen::Vector3d point = camera_centre + plane_depth * ray_in_world;
-            const float lambert =
-                SoftLambert(plane->normal.cast<float>().dot(state.light_in_world.to_light),
-                            state.light_in_world.softness);
-            color = plane->Albedo(point) *
-                    (state.light_in_world.ambient + state.light_in_world.intensity * lambert);
+            color = plane_radiance(*plane, camera_centre + plane_depth * ray_in_world);
           } else {
             color = fallback;
           }
@@ -634,6 +667,7 @@ StatusOr<std::unique_ptr<SynthWorld>> SynthWorld::Create(const SynthOptions& opt
   material.albedo = SrgbToLinear(o.color_rgb) * static_cast<float>(o.diffuse);
   material.specular = static_cast<float>(o.specular);
   material.shininess = static_cast<float>(o.shininess);
+  material.reflectance = static_cast<float>(o.reflectance);
   w->object = MakeBody(*w->object_mesh, o.crease_angle_deg, material);
 
   // Cameras and motion.

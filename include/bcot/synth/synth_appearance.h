@@ -68,7 +68,12 @@ struct SurfaceMaterial {
   Eigen::Vector3f albedo = Eigen::Vector3f::Constant(0.5f);
   float specular = 0.0f;
   float shininess = 20.0f;
+  float reflectance = 0.0f;  // clear-coat F0 (SynthOptions::Object::reflectance)
 };
+
+// Schlick's Fresnel weight of a clear coat with reflectance F0 at normal incidence, for
+// cos θ = n·v (clamped to [0, 1]).
+float SchlickFresnel(float f0, float cos_theta);
 
 // Directional light plus ambient, in the frame the normals are given in.
 struct SceneLight {

@@ -44,6 +44,11 @@ struct SynthOptions {
     double specular = 0.25;
     // Blinn-Phong exponent, [1, 10000]: larger = smaller, sharper highlights.
     double shininess = 40.0;
+    // Reflectance at normal incidence F0 of a smooth clear coat, [0, 1]; 0 = none. The coat
+    // mirrors the backdrop and the table with Schlick's Fresnel weight F0 + (1 − F0)(1 − n·v)⁵,
+    // which reaches 1 at the silhouette: the outermost sliver of the rim shows what lies behind
+    // the object, as glossy and metal surfaces do under real light (issue 12).
+    double reflectance = 0.0;
     // Smooth-shading crease angle (deg), [0, 180]: normals are averaged across edges whose
     // dihedral angle is below it (0 = flat facets).
     double crease_angle_deg = 35.0;
