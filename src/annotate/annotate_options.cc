@@ -178,9 +178,15 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "edge.iterations", [](auto& o) -> auto& { return o.tracker.frame.edge.iterations; }, "",
        "Ceres iterations per edge solve")
       .Range(AtLeast(1));
+  s->AddChoice(
+      "edge.robust_loss", [](auto& o) -> auto& { return o.tracker.frame.edge.robust_loss; },
+      Choices<EdgeRobustLoss>{{"huber", EdgeRobustLoss::kHuber},
+                              {"cauchy", EdgeRobustLoss::kCauchy},
+                              {"tukey", EdgeRobustLoss::kTukey}},
+      "robust loss of each edge line's residual");
   s->Add(
        "edge.robust_scale", [](auto& o) -> auto& { return o.tracker.frame.edge.robust_scale; },
-       "sigma", "Huber threshold of the edge residuals")
+       "sigma", "threshold of the edge residuals' robust loss")
       .Range(Positive());
   s->Add(
        "edge.num_lines", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.num_lines; }, "",

@@ -18,12 +18,18 @@ constexpr double kMinDepthMm = 1e-6;
 
 CorrespondenceLineCostFunction::CorrespondenceLineCostFunction(
     const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
-    std::shared_ptr<const CorrespondenceLines> lines, double weight)
-    : camera_(camera), cam_from_rig_(cam_from_rig), lines_(std::move(lines)) {
-  BCOT_CHECK(lines_ != nullptr && !lines_->lines.empty());
+    std::shared_ptr<const CorrespondenceLines> lines, double weight, int first_line, int num_lines)
+    : camera_(camera),
+      cam_from_rig_(cam_from_rig),
+      lines_(std::move(lines)),
+      first_line_(first_line) {
+  BCOT_CHECK(lines_ != nullptr);
+  const int available = static_cast<int>(lines_->lines.size());
+  if (num_lines < 0) num_lines = available - first_line;
+  BCOT_CHECK(first_line >= 0 && num_lines >= 1 && first_line + num_lines <= available);
   BCOT_CHECK(weight >= 0.0 && std::isfinite(weight));
   sqrt_weight_ = std::sqrt(weight);
-  set_num_residuals(static_cast<int>(lines_->lines.size()));
+  set_num_residuals(num_lines);
   mutable_parameter_block_sizes()->push_back(kPoseAmbientSize);
 }
 
@@ -37,7 +43,7 @@ bool CorrespondenceLineCostFunction::Evaluate(double const* const* parameters, d
   if (want_jacobian) lie_jacobian.resize(n, 6);
   Eigen::Matrix<double, 2, 3> d_pixel_d_point;
   for (int i = 0; i < n; ++i) {
-    const CorrespondenceLine& line = lines_->lines[i];
+    const CorrespondenceLine& line = lines_->lines[first_line_ + i];
     const Eigen::Vector3d point_in_cam = cam_from_objcentre * line.point_in_objcentre;
     if (!(point_in_cam.z() > kMinDepthMm)) return false;
     const Eigen::Vector2d projection =

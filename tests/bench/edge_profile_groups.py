@@ -46,7 +46,7 @@ def main():
         for channel, label in enumerate("RGB"):
             means = [sum(r[1][k][channel] for r in group) / len(group) for k in range(0, samples, every)]
             print(f"     {label} " + " ".join(f"{m:6.3f}" for m in means))
-    histogram = Counter(int((mu + 2.0) // 0.25) for mu, _ in rows)
+    histogram = Counter(int((mu + 2.0) // 0.25) for mu, *_ in rows)
     print("  mu histogram (bin start px: lines): " +
           ", ".join(f"{b * 0.25 - 2.0:+.2f}: {histogram[b]}" for b in sorted(histogram)))
 

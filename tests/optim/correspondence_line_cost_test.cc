@@ -210,6 +210,47 @@ TEST_F(CorrespondenceLineTest, GradientCheckerAcceptsTheAnalyticJacobian) {
   }
 }
 
+// A cost over a range of the lines (the edge stage's block per line) gives exactly the rows of
+// the cost over all of them: residuals and Jacobian (the latter to rounding: the ambient
+// Jacobian is one matrix product over the block's rows, vectorised differently per row count).
+TEST_F(CorrespondenceLineTest, LineRangesGiveTheRowsOfTheWholeCost) {
+  const Scenario& scenario = GradientScenarios().front();
+  const Camera camera = ScenarioCamera(scenario);
+  const cv::Mat3b image = test::RenderTestImage(*caster_, camera, scenario.cam_from_objcentre);
+  const Eigen::Isometry3d rig_from_objcentre0 = test::RigFromObjcentre(scenario.cam_from_objcentre);
+  auto lines =
+      std::make_shared<const CorrespondenceLines>(MakeLines(camera, image, rig_from_objcentre0));
+  const int n = static_cast<int>(lines->lines.size());
+  ASSERT_GT(n, 10);
+  std::mt19937 rng(7);
+  PoseParameters x = ToPoseParameters(rig_from_objcentre0 * ExpSE3(SeededTwist(rng, 0.02, 3.0)));
+  const double* parameters[] = {x.data()};
+  const CorrespondenceLineCostFunction whole(camera, test::TestCamFromRig(), lines, 0.7);
+  std::vector<double> residuals(n), jacobian(n * kPoseAmbientSize);
+  double* jacobians[] = {jacobian.data()};
+  ASSERT_TRUE(whole.Evaluate(parameters, residuals.data(), jacobians));
+  for (const auto& [first, count] : {std::pair{0, 1}, std::pair{n - 1, 1}, std::pair{3, 5}}) {
+    const CorrespondenceLineCostFunction part(camera, test::TestCamFromRig(), lines, 0.7, first,
+                                              count);
+    ASSERT_EQ(part.num_residuals(), count);
+    std::vector<double> part_residuals(count), part_jacobian(count * kPoseAmbientSize);
+    double* part_jacobians[] = {part_jacobian.data()};
+    ASSERT_TRUE(part.Evaluate(parameters, part_residuals.data(), part_jacobians));
+    for (int i = 0; i < count; ++i) {
+      EXPECT_EQ(part_residuals[i], residuals[first + i]) << first << "+" << i;
+      for (int k = 0; k < kPoseAmbientSize; ++k) {
+        const double expected = jacobian[(first + i) * kPoseAmbientSize + k];
+        EXPECT_NEAR(part_jacobian[i * kPoseAmbientSize + k], expected,
+                    1e-12 * (1.0 + std::abs(expected)));
+      }
+    }
+  }
+  // The default range is every line.
+  EXPECT_EQ(
+      CorrespondenceLineCostFunction(camera, test::TestCamFromRig(), lines, 1.0, 4).num_residuals(),
+      n - 4);
+}
+
 class SparseEnergyConvergenceTest : public test::BunnyCasterTest,
                                     public ::testing::WithParamInterface<RegionEnergy> {};
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 #include <vector>
@@ -166,11 +167,17 @@ TEST(FitEdgeAcrossTest, ClippedChannelsAreLeftOut) {
   }
 }
 
+// Changes a view's image before it is tracked, given its camera and the true cam_from_object.
+using ImageEdit =
+    std::function<void(const RayCaster&, const Camera&, const Eigen::Isometry3d&, cv::Mat3b*)>;
+
 // Norm of the mean signed error (mm) of the object centre per camera, tracking frames 1..6 of
-// a `bcot synth` scene (config + overrides) from the truth with `options`.
+// a `bcot synth` scene (config + overrides) from the truth with `options`, each image changed
+// by `edit` when given.
 std::vector<double> TrackedBiasNorms(const std::string& config,
                                      const std::vector<std::string>& overrides,
-                                     const MultiViewTrackerOptions& options) {
+                                     const MultiViewTrackerOptions& options,
+                                     const ImageEdit& edit = nullptr) {
   const test::TempDir dir;
   StatusOr<SynthOptions> synth = ReadSynthOptions(test::SourcePath(config), overrides);
   BCOT_CHECK(synth.ok());
@@ -192,6 +199,10 @@ std::vector<double> TrackedBiasNorms(const std::string& config,
     std::vector<cv::Mat3b> images;
     for (int c = 0; c < sequence->rig.size(); ++c) {
       images.emplace_back(cv::imread(sequence->image_paths[c][frame]));
+      if (edit) {
+        edit(caster, sequence->rig[c].camera, sequence->rig[c].cam_from_rig * (*truth)[frame],
+             &images.back());
+      }
     }
     return images;
   };
@@ -251,12 +262,63 @@ TEST(EdgeStageTest, SaturatedRimsAreMeasuredOnTheUnclippedChannels) {
       TrackedBiasNorms("configs/synth/saturated_rim.yaml", overrides, clipping_ignored);
   const std::vector<double> handled =
       TrackedBiasNorms("configs/synth/saturated_rim.yaml", overrides, MultiViewTrackerOptions());
-  // Measured: 0.062 mm with the clipped channel, 0.040 mm without, per camera.
+  // Measured per camera with the per-line Cauchy loss: 0.0315 mm with the clipped channel,
+  // 0.0196 mm without (with one Huber loss over each view's block of lines, before the robust
+  // loss acted per line: 0.062 and 0.040 mm).
   for (size_t c = 0; c < ignored.size(); ++c) {
     SCOPED_TRACE(c);
-    EXPECT_GT(ignored[c], 0.05);
-    EXPECT_LT(handled[c], 0.045);
+    EXPECT_GT(ignored[c], 0.025);
+    EXPECT_LT(handled[c], 0.025);
     EXPECT_LT(handled[c], 0.75 * ignored[c]);
+  }
+}
+
+// Glossy and metal rims under real light often carry no step at the geometric edge: the
+// outermost sliver reflects what lies behind the object, and the image edge is found up to 2 px
+// inside on some lines while the others are right (docs/notes/issue12_rim_profiles.md: the
+// measured μ is bimodal). Here the outer 1.5 px of the upper rim take the colour found 3 px
+// outside the contour on alternate 8 px stretches: half of the upper lines are then measured
+// ~1.5 px inside. One residual block per line lets a robust loss discount them; the Cauchy loss
+// (the default) does so better than Huber, which only bounds their influence.
+void EraseAlternateUpperRimStretches(const RayCaster& caster, const Camera& camera,
+                                     const Eigen::Isometry3d& cam_from_object, cv::Mat3b* image) {
+  const Silhouette silhouette = RenderSilhouette(caster, camera, cam_from_object, ContourOptions{});
+  const cv::Mat3b original = image->clone();
+  const cv::Rect bounds(0, 0, image->cols, image->rows);
+  for (const ContourPoint& point : silhouette.contour) {
+    if (point.normal.y() > -0.5) continue;
+    if (static_cast<int>(std::floor(point.pixel.x() / 8.0)) % 2 != 0) continue;
+    const Eigen::Vector2d outside = point.pixel + 3.0 * point.normal;
+    const cv::Point source(static_cast<int>(std::lround(outside.x())),
+                           static_cast<int>(std::lround(outside.y())));
+    if (!bounds.contains(source)) continue;
+    for (double s = -1.5; s <= 0.25; s += 0.25) {
+      const Eigen::Vector2d at = point.pixel + s * point.normal;
+      const cv::Point target(static_cast<int>(std::lround(at.x())),
+                             static_cast<int>(std::lround(at.y())));
+      if (bounds.contains(target)) (*image)(target) = original(source);
+    }
+  }
+}
+
+TEST(EdgeStageTest, RobustLossDiscountsRimsWithoutAStepAtTheEdge) {
+  const std::vector<std::string> overrides = {"motion.num_frames=7", "render.threads=2"};
+  MultiViewTrackerOptions huber;
+  huber.frame.edge.robust_loss = EdgeRobustLoss::kHuber;
+  const std::vector<double> clean =
+      TrackedBiasNorms("configs/synth/shaded_rim.yaml", overrides, MultiViewTrackerOptions());
+  const std::vector<double> bounded = TrackedBiasNorms("configs/synth/shaded_rim.yaml", overrides,
+                                                       huber, EraseAlternateUpperRimStretches);
+  const std::vector<double> discounted =
+      TrackedBiasNorms("configs/synth/shaded_rim.yaml", overrides, MultiViewTrackerOptions(),
+                       EraseAlternateUpperRimStretches);
+  // Measured per camera: clean 0.066 mm; erased rims 0.178 mm with Huber, 0.068 mm with Cauchy.
+  for (size_t c = 0; c < clean.size(); ++c) {
+    SCOPED_TRACE(c);
+    EXPECT_GT(bounded[c], 0.12);
+    EXPECT_LT(discounted[c], 0.09);
+    EXPECT_LT(discounted[c], 0.5 * bounded[c]);
+    EXPECT_LT(discounted[c], clean[c] + 0.02);
   }
 }
 

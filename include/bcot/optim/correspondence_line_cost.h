@@ -33,10 +33,13 @@ namespace bcot {
 
 class CorrespondenceLineCostFunction final : public ceres::CostFunction {
  public:
-  // One residual per line. `lines` must hold at least one line and `weight` be finite and
-  // >= 0 (both CHECKed: the caller skips views without lines).
+  // One residual per line of lines[first_line, first_line + num_lines) (num_lines < 0: to the
+  // last line). A block per line lets each line have its own robust loss (the edge stage);
+  // one block for all lines is cheaper. The range must be non-empty and within the lines, and
+  // `weight` finite and >= 0 (CHECKed: the caller skips views without lines).
   CorrespondenceLineCostFunction(const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
-                                 std::shared_ptr<const CorrespondenceLines> lines, double weight);
+                                 std::shared_ptr<const CorrespondenceLines> lines, double weight,
+                                 int first_line = 0, int num_lines = -1);
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
@@ -51,6 +54,7 @@ class CorrespondenceLineCostFunction final : public ceres::CostFunction {
   Camera camera_;
   Eigen::Isometry3d cam_from_rig_;
   std::shared_ptr<const CorrespondenceLines> lines_;
+  int first_line_;
   double sqrt_weight_;
 };
 

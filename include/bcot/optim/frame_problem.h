@@ -52,14 +52,21 @@ enum class RegionEnergy { kDense, kSparse, kCombined };
 
 const char* RegionEnergyName(RegionEnergy energy);
 
+// The robust loss ρ of the edge residuals. The measurement errors of edge lines are not
+// symmetric: lines whose rim carries no step at the geometric edge (grazing reflections and
+// highlights matching the background, docs/notes/issue12_rim_profiles.md) are found up to 2 px
+// inside it, while the well-measured lines form a core centred on it. A redescending loss
+// gives such lines little influence (Cauchy: weight 1/(1 + (r/s)²)); Huber only bounds it.
+enum class EdgeRobustLoss { kHuber, kCauchy, kTukey };
+
 // The final edge-alignment stage (edge_lines.h): after the region rounds, `rounds` times
 // { ray-cast the silhouette at the current pose, measure every view's edge lines (the centre of
 // the image's blurred step along each contour normal), `iterations` Levenberg-Marquardt
-// iterations on ½Σ ρ(r²) of their residuals (CorrespondenceLineCostFunction, Huber ρ with
-// threshold robust_scale in σ units) }, stopping early like the region rounds. The region
-// energy is not part of it: its minimum is biased where a shaded rim moves the colour
-// posteriors' crossing inward, the edge's is not. Skipped (the region result kept) when all
-// views together have fewer than min_lines lines.
+// iterations on ½Σ ρ(r²) of their residuals (CorrespondenceLineCostFunction, one residual
+// block per line so that ρ acts on each line; threshold robust_scale in σ units) }, stopping
+// early like the region rounds. The region energy is not part of it: its minimum is biased
+// where a shaded rim moves the colour posteriors' crossing inward, the edge's is not. Skipped
+// (the region result kept) when all views together have fewer than min_lines lines.
 struct EdgeRefineOptions {
   // On by default (annotation); the temporal window takes each frame's edge pose posterior as
   // its data term (window_problem.h). configs/track.yaml switches it off for speed.
@@ -68,7 +75,9 @@ struct EdgeRefineOptions {
   int rounds = 2;
   // Ceres iterations per edge solve; >= 1.
   int iterations = 5;
-  // Huber threshold of the edge residuals (units of each line's σ); > 0.
+  // Loss of each line's residual and its threshold (units of the line's σ); scale > 0.
+  // Cauchy: docs/notes/issue12_robust_edges.md (Huber and Tukey measured beside it).
+  EdgeRobustLoss robust_loss = EdgeRobustLoss::kCauchy;
   double robust_scale = 3.0;
   // Fewest lines over all views for the stage to run; >= 6 (six pose parameters).
   int min_lines = 20;
