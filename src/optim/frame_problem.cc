@@ -214,46 +214,65 @@ ceres::LossFunction* EdgeLoss(const EdgeRefineOptions& edge) {
 }
 
 // The Gaussian pose posterior of an edge solve at its optimum `pose` (DESIGN.md "Temporal
-// window"): information H = JᵀJ of the whitened edge residuals, each view's lines as one block
-// under a Huber loss of threshold kPosteriorViewScale on that block's residual norm, divided
-// by the a posteriori variance factor 2·cost/(n − 6) when that exceeds 1. The per-view Huber
-// discounts a view by about kPosteriorViewScale/‖r_v‖: its information grows like √n_v, not
-// n_v, because the lines of a contour share much of their error (local appearance, facets, the
-// silhouette's sampling). So discounted, the predicted standard deviation matches the
-// per-frame errors (WindowSequenceTest.EdgePosteriorPredictsThePerFrameErrors: 0.023 mm
-// predicted, 0.022 mm measured); counting the lines as independent predicts about half, and
-// the window then smooths too little. The solve itself weighs each line by its own loss. In
-// the tangent of Se3Manifold; null when H is singular.
+// window"), in the tangent of Se3Manifold; null when singular. Its information is
+//   H = Σ_v c_v · Σ_{i ∈ v} ρ'(r_i²) J_iᵀJ_i,   c_v = min(1, k / √S_v),   S_v = Σ_{i ∈ v} ρ(r_i²),
+// divided by the a posteriori variance factor Σ_v h(S_v)/(n − 6) when that exceeds 1 (h the
+// Huber ρ of threshold k on S_v; k = kPosteriorViewScale). Each line counts with the weight ρ'
+// the solve's robust loss gave it, and each view is discounted as a whole: the lines of a
+// contour share much of their error (local appearance, facets, the silhouette's sampling), so
+// a view's information grows like √n_v, not n_v. So discounted, the predicted standard
+// deviation matches the per-frame errors (WindowSequenceTest.EdgePosteriorPredictsThe-
+// PerFrameErrors: 0.023 mm predicted, 0.022–0.024 mm measured); counting the lines as
+// independent predicts about half, and the window then smooths too little.
 constexpr double kPosteriorViewScale = 3.0;
 
 std::shared_ptr<const PoseGaussian> EdgePosterior(
     const std::vector<std::pair<int, std::shared_ptr<const CorrespondenceLines>>>& measured,
-    const std::vector<FrameView>& views, const Eigen::Isometry3d& pose) {
+    const std::vector<FrameView>& views, const EdgeRefineOptions& edge,
+    const Eigen::Isometry3d& pose) {
   PoseParameters x = ToPoseParameters(pose);
   ceres::Problem problem;
-  for (const auto& [v, lines] : measured) {
+  std::vector<int> view_of_row;  // index into `measured`
+  for (size_t m = 0; m < measured.size(); ++m) {
+    const auto& [v, lines] = measured[m];
     problem.AddResidualBlock(new CorrespondenceLineCostFunction(
                                  *views[v].camera, views[v].cam_from_rig, lines, views[v].weight),
-                             new ceres::HuberLoss(kPosteriorViewScale), x.data());
+                             nullptr, x.data());
+    view_of_row.insert(view_of_row.end(), lines->lines.size(), static_cast<int>(m));
   }
   problem.SetManifold(x.data(), new Se3Manifold());
   double cost = 0.0;
+  std::vector<double> residuals;
   ceres::CRSMatrix jacobian;
-  if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, &jacobian)) {
+  if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, &residuals, nullptr, &jacobian)) {
     return nullptr;
   }
-  if (jacobian.num_cols != kPoseTangentSize || jacobian.num_rows <= kPoseTangentSize) {
+  if (jacobian.num_cols != kPoseTangentSize || jacobian.num_rows <= kPoseTangentSize ||
+      static_cast<int>(view_of_row.size()) != jacobian.num_rows) {
     return nullptr;
   }
-  Matrix6d information = Matrix6d::Zero();
+  const std::unique_ptr<ceres::LossFunction> loss(EdgeLoss(edge));
+  std::vector<Matrix6d> view_information(measured.size(), Matrix6d::Zero());
+  std::vector<double> view_cost(measured.size(), 0.0);  // S_v
   for (int row = 0; row < jacobian.num_rows; ++row) {
     Vector6d j = Vector6d::Zero();
     for (int k = jacobian.rows[row]; k < jacobian.rows[row + 1]; ++k) {
       j[jacobian.cols[k]] = jacobian.values[k];
     }
-    information += j * j.transpose();
+    double rho[3];
+    loss->Evaluate(residuals[row] * residuals[row], rho);
+    view_information[view_of_row[row]] += rho[1] * j * j.transpose();
+    view_cost[view_of_row[row]] += rho[0];
   }
-  const double variance_factor = 2.0 * cost / (jacobian.num_rows - kPoseTangentSize);
+  constexpr double k = kPosteriorViewScale;
+  Matrix6d information = Matrix6d::Zero();
+  double discounted_cost = 0.0;
+  for (size_t m = 0; m < measured.size(); ++m) {
+    const double s = view_cost[m];
+    information += (s > k * k ? k / std::sqrt(s) : 1.0) * view_information[m];
+    discounted_cost += s > k * k ? 2.0 * k * std::sqrt(s) - k * k : s;
+  }
+  const double variance_factor = discounted_cost / (jacobian.num_rows - kPoseTangentSize);
   if (variance_factor > 1.0) information /= variance_factor;
   auto gaussian = std::make_shared<PoseGaussian>();
   gaussian->mean = pose;
@@ -501,7 +520,7 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
       summary->views[v].edge_lines = static_cast<int>(lines->lines.size());
     }
     const Eigen::Isometry3d round_end = FromPoseParameters(parameters);
-    if (posterior != nullptr) *posterior = EdgePosterior(measured, views, round_end);
+    if (posterior != nullptr) *posterior = EdgePosterior(measured, views, edge, round_end);
     const double moved_deg = RotationDistanceDeg(linearisation_pose.linear(), round_end.linear());
     const double moved_mm = (round_end.translation() - linearisation_pose.translation()).norm();
     if (moved_deg < options_.round_tolerance_deg && moved_mm < options_.round_tolerance_mm) break;

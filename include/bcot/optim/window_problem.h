@@ -12,8 +12,8 @@
 // D_t, the data term of frame t: Σ_views w_v·Σ_x F_t,x(T_t) (its region templates), or, when
 // frame t's solve ended with the edge stage (FrameProblemOptions::edge) and edge_posterior is
 // on, ½ eᵀH_t e, the Gaussian pose posterior of its edge solve (pose_gaussian_cost.h: mean the
-// per-frame pose, H_t = JᵀJ of its whitened edge residuals, each view's lines discounted
-// together by a Huber loss on their residual norm, divided by their a posteriori variance
+// per-frame pose, H_t = Σ ρ'·JᵀJ of its whitened, robustly weighted edge residuals, each view
+// discounted as a whole for the error its lines share, divided by their a posteriori variance
 // factor when that exceeds 1: frame_problem.cc EdgePosterior). Why the posterior and not the region terms: the
 // region minimum is biased under shaded rims (edge_lines.h) and the window, refining on it,
 // pulled the poses back towards that bias (window_problem_test: mean error 0.035 → 0.059 mm
