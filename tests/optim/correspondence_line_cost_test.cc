@@ -214,7 +214,7 @@ TEST_F(CorrespondenceLineTest, GradientCheckerAcceptsTheAnalyticJacobian) {
 // the cost over all of them: residuals and Jacobian (the latter to rounding: the ambient
 // Jacobian is one matrix product over the block's rows, vectorised differently per row count).
 TEST_F(CorrespondenceLineTest, LineRangesGiveTheRowsOfTheWholeCost) {
-  const Scenario& scenario = GradientScenarios().front();
+  const Scenario scenario = GradientScenarios().front();  // a copy: the list is a temporary
   const Camera camera = ScenarioCamera(scenario);
   const cv::Mat3b image = test::RenderTestImage(*caster_, camera, scenario.cam_from_objcentre);
   const Eigen::Isometry3d rig_from_objcentre0 = test::RigFromObjcentre(scenario.cam_from_objcentre);
