@@ -1,5 +1,6 @@
 #include "test_util.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -63,19 +64,35 @@ int RunCommand(const std::string& command, std::string* output) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+std::string CopyTree(const std::string& source, const std::string& target) {
+  std::filesystem::copy(source, target, std::filesystem::copy_options::recursive);
+  return target;
+}
+
+int CountLines(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
+
+void Synthesize(const std::string& sequence_dir, const std::string& settings,
+                const std::string& config) {
+  std::string output;
+  const int code =
+      RunCommand(BcotBinary() + " synth --quiet --config " + SourcePath("configs/synth/" + config) +
+                     " --out " + sequence_dir + " " + settings,
+                 &output);
+  if (code != 0) std::fprintf(stderr, "%s\n", output.c_str());
+  BCOT_CHECK(code == 0 && "bcot synth failed");
+}
+
 void MakeTinyAnnotatedSequence(const std::string& sequence_dir, int num_frames,
                                const std::string& annotation_dir,
                                const std::string& annotate_overrides) {
-  std::string output;
-  const int synth =
-      RunCommand(BcotBinary() + " synth --quiet --config " + SourcePath("configs/synth/demo.yaml") +
-                     " --out " + sequence_dir +
-                     " --set cameras.width=160 --set cameras.height=128 --set distractors.count=1" +
-                     " --set render.object_samples_per_axis=2 --set motion.num_frames=" +
-                     std::to_string(num_frames),
-                 &output);
-  BCOT_CHECK(synth == 0 && "bcot synth failed");
+  Synthesize(sequence_dir,
+             "--set cameras.width=160 --set cameras.height=128 --set distractors.count=1"
+             " --set render.object_samples_per_axis=2 --set motion.num_frames=" +
+                 std::to_string(num_frames));
   if (annotation_dir.empty()) return;
+  std::string output;
   const int annotate =
       RunCommand(BcotBinary() + " annotate --quiet " + sequence_dir + " --out " + annotation_dir +
                      " --config " + SourcePath("configs/track.yaml") + " " + annotate_overrides,

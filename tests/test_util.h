@@ -34,11 +34,22 @@ std::string SharedDataPath(const std::string& relative);
 // Path of the built `bcot` binary.
 std::string BcotBinary();
 
+// Copies the directory `source` recursively to `target` (which must not exist); returns target.
+std::string CopyTree(const std::string& source, const std::string& target);
+
 // Writes `content` to `path` (creating parent directories); CHECK-fails on error.
 void WriteText(const std::string& path, const std::string& content);
 
 // Runs a shell command, returns its exit code; stdout+stderr go to `output` when non-null.
 int RunCommand(const std::string& command, std::string* output = nullptr);
+
+// Lines (newline characters) in a command's output: a one-line error has exactly one.
+int CountLines(const std::string& text);
+
+// `bcot synth --quiet --config configs/synth/<config> --out <sequence_dir> <settings>`
+// (settings: "--set key=value ..."); CHECK-fails, printing the command's output, when it fails.
+void Synthesize(const std::string& sequence_dir, const std::string& settings,
+                const std::string& config = "demo.yaml");
 
 // `bcot synth` of the demo scene at 160×128 with `num_frames` frames into `sequence_dir`, then,
 // when `annotation_dir` is not empty, `bcot annotate` of it with configs/track.yaml and the

@@ -52,10 +52,8 @@ bool CorrespondenceLineCostFunction::Evaluate(double const* const* parameters, d
     residuals[i] = scale * (line.normal.dot(projection - line.projection0) - line.mean_px);
     if (want_jacobian) {
       // ∂r/∂δ = (√w/σ)·nᵀ·∂π/∂X_c·R_c·[I | −X^]  (S.19).
-      const Eigen::RowVector3d d_r_d_rho =
-          scale * line.normal.transpose() * d_pixel_d_point * rotation;
-      lie_jacobian.block<1, 3>(i, 0) = d_r_d_rho;
-      lie_jacobian.block<1, 3>(i, 3) = -d_r_d_rho * Hat(line.point_in_objcentre);
+      lie_jacobian.row(i) = scale * ProjectionLieJacobian(line.normal.transpose(), d_pixel_d_point,
+                                                          rotation, line.point_in_objcentre);
     }
   }
   if (want_jacobian) AmbientFromLieJacobian(lie_jacobian, parameters[0], jacobians[0]);
@@ -63,14 +61,11 @@ bool CorrespondenceLineCostFunction::Evaluate(double const* const* parameters, d
 }
 
 double CorrespondenceLineCostFunction::Energy(const double* rig_from_objcentre) const {
-  std::vector<double> residuals(num_residuals());
-  const double* parameters[] = {rig_from_objcentre};
-  if (!Evaluate(parameters, residuals.data(), nullptr)) {
+  std::vector<double> residuals;
+  if (!EvaluatePoseResiduals(*this, rig_from_objcentre, &residuals)) {
     return std::numeric_limits<double>::infinity();
   }
-  double energy = 0.0;
-  for (double r : residuals) energy += 0.5 * r * r;
-  return energy;
+  return 0.5 * Eigen::Map<const Eigen::VectorXd>(residuals.data(), residuals.size()).squaredNorm();
 }
 
 }  // namespace bcot

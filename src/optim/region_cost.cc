@@ -125,13 +125,10 @@ bool RegionCostFunction::Evaluate(double const* const* parameters, double* resid
       const double d_heaviside = -s / (kPi * (1.0 + s * s * phi * phi));
       const double d_energy_d_phi =
           -(1.0 - 2.0 * eps) * (p.p_foreground - p.p_background) * d_heaviside / mix;
-      // ∂Φ/∂δ = −nᵀ·∂π/∂X_c·R_c·[I | −X^]  (S.19).
-      const Eigen::RowVector3d d_phi_d_point_in_cam = -p.grad_phi0.transpose() * d_pixel_d_point;
-      const Eigen::RowVector3d d_phi_d_rho = d_phi_d_point_in_cam * rotation;
-      const Eigen::RowVector3d d_phi_d_omega = -d_phi_d_rho * Hat(p.point_in_objcentre);
-      const double scale = d_residual_d_energy * d_energy_d_phi;
-      lie_jacobian.block<1, 3>(i, 0) = scale * d_phi_d_rho;
-      lie_jacobian.block<1, 3>(i, 3) = scale * d_phi_d_omega;
+      // ∂Φ/∂δ = −nᵀ·∂π/∂X_c·R_c·[I | −X^]  (S.19), n = ∇Φ₀.
+      lie_jacobian.row(i) = (-d_residual_d_energy * d_energy_d_phi) *
+                            ProjectionLieJacobian(p.grad_phi0.transpose(), d_pixel_d_point,
+                                                  rotation, p.point_in_objcentre);
     }
   }
   if (want_jacobian) AmbientFromLieJacobian(lie_jacobian, parameters[0], jacobians[0]);
@@ -139,9 +136,8 @@ bool RegionCostFunction::Evaluate(double const* const* parameters, double* resid
 }
 
 double RegionCostFunction::Energy(const double* rig_from_objcentre) const {
-  std::vector<double> residuals(num_residuals());
-  const double* parameters[] = {rig_from_objcentre};
-  if (!Evaluate(parameters, residuals.data(), nullptr)) {
+  std::vector<double> residuals;
+  if (!EvaluatePoseResiduals(*this, rig_from_objcentre, &residuals)) {
     return std::numeric_limits<double>::infinity();
   }
   double energy = 0.0;

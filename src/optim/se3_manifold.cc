@@ -100,4 +100,20 @@ void AmbientFromLieJacobian(const Eigen::Matrix<double, Eigen::Dynamic, 6>& lie_
   ambient = lie_jacobian * TangentFromAmbientJacobian(parameters);
 }
 
+Eigen::Matrix<double, 1, 6> ProjectionLieJacobian(
+    const Eigen::RowVector2d& direction, const Eigen::Matrix<double, 2, 3>& d_pixel_d_point,
+    const Eigen::Matrix3d& rotation, const Eigen::Vector3d& point_in_objcentre) {
+  Eigen::Matrix<double, 1, 6> jacobian;
+  const Eigen::RowVector3d d_rho = direction * d_pixel_d_point * rotation;
+  jacobian << d_rho, -d_rho * Hat(point_in_objcentre);
+  return jacobian;
+}
+
+bool EvaluatePoseResiduals(const ceres::CostFunction& cost, const double* pose_parameters,
+                           std::vector<double>* residuals) {
+  residuals->assign(cost.num_residuals(), 0.0);
+  const double* parameters[] = {pose_parameters};
+  return cost.Evaluate(parameters, residuals->data(), nullptr);
+}
+
 }  // namespace bcot

@@ -113,14 +113,9 @@ class BatchRunTest : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = new test::TempDir();
     for (const char* name : {"lab/s1", "lab/s2"}) {
-      std::string output;
-      const int code = test::RunCommand(
-          test::BcotBinary() + " synth --quiet --config " +
-              test::SourcePath("configs/synth/demo.yaml") + " --out " + dir_->File(name) +
-              " --set cameras.width=160 --set cameras.height=128 --set motion.num_frames=3"
-              " --set distractors.count=0 --set render.object_samples_per_axis=2",
-          &output);
-      BCOT_CHECK(code == 0);
+      test::Synthesize(dir_->File(name),
+                       "--set cameras.width=160 --set cameras.height=128 --set motion.num_frames=3"
+                       " --set distractors.count=0 --set render.object_samples_per_axis=2");
     }
   }
   static void TearDownTestSuite() { delete dir_; }

@@ -15,33 +15,14 @@
 
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
+#include "test_meshes.h"
 
 namespace bcot {
 namespace {
 
 constexpr double kImageFractionOfHeight = 0.4;
 
-// Torus around z with `segments_u` × `segments_v` quads (2·u·v triangles).
-Mesh MakeTorus(double major, double minor, int segments_u, int segments_v) {
-  std::vector<Eigen::Vector3f> vertices;
-  std::vector<Eigen::Vector3i> triangles;
-  for (int i = 0; i < segments_u; ++i) {
-    const double u = 2.0 * M_PI * i / segments_u;
-    for (int j = 0; j < segments_v; ++j) {
-      const double v = 2.0 * M_PI * j / segments_v;
-      vertices.emplace_back((major + minor * std::cos(v)) * std::cos(u),
-                            (major + minor * std::cos(v)) * std::sin(u), minor * std::sin(v));
-    }
-  }
-  auto index = [&](int i, int j) { return (i % segments_u) * segments_v + (j % segments_v); };
-  for (int i = 0; i < segments_u; ++i) {
-    for (int j = 0; j < segments_v; ++j) {
-      triangles.emplace_back(index(i, j), index(i + 1, j), index(i + 1, j + 1));
-      triangles.emplace_back(index(i, j), index(i + 1, j + 1), index(i, j + 1));
-    }
-  }
-  return Mesh::FromArrays(std::move(vertices), std::move(triangles));
-}
+using test::MakeTorus;
 
 struct Scene {
   Mesh mesh;

@@ -53,6 +53,7 @@
 #include "bcot/render/ray_caster.h"
 #include "bcot/synth/synth_options.h"
 #include "bcot/synth/synthesizer.h"
+#include "ground_truth_sequence.h"
 
 namespace bcot {
 namespace {
@@ -153,20 +154,16 @@ int main(int argc, char** argv) {
   // One directory per distinct synth setting.
   const std::string key = std::to_string(std::hash<std::string>{}(FormatSynthOptions(*synth)));
   const std::string dir = work_dir + "/" + key;
-  if (!std::filesystem::exists(dir + "/gt/rig_from_object.txt")) {
-    std::fprintf(stderr, "synthesizing %s (%s) ...\n", dir.c_str(), label.c_str());
-    std::filesystem::remove_all(dir);
-    SynthOptions threaded = *synth;
-    threaded.render.threads = 2;
-    const Status status = Synthesize(threaded, dir);
-    if (!status.ok()) return Fail(status);
-  }
-  StatusOr<Sequence> sequence = LoadSequence(dir);
-  if (!sequence.ok()) return Fail(sequence.status());
-  StatusOr<std::vector<Eigen::Isometry3d>> truth = ReadPoseFile(dir + "/gt/rig_from_object.txt");
-  if (!truth.ok()) return Fail(truth.status());
-  StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
-  if (!mesh.ok()) return Fail(mesh.status());
+  StatusOr<bench::GroundTruthSequence> loaded =
+      bench::SynthesizeOrLoad(dir, label, [&](const std::string& out) {
+        SynthOptions threaded = *synth;
+        threaded.render.threads = 2;
+        return Synthesize(threaded, out);
+      });
+  if (!loaded.ok()) return Fail(loaded.status());
+  const Sequence* sequence = &loaded->sequence;
+  const std::vector<Eigen::Isometry3d>* truth = &loaded->truth;
+  const Mesh* mesh = &loaded->mesh;
   const RayCaster caster(*mesh);
   const Eigen::Isometry3d objcentre_from_template = mesh->objcentre_from_template();
   auto objcentre = [&](const Eigen::Isometry3d& rig_from_object) {

@@ -35,6 +35,7 @@
 #include "bcot/optim/silhouette.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
+#include "ground_truth_sequence.h"
 
 namespace {
 
@@ -93,13 +94,11 @@ int main(int argc, char** argv) {
 
   const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, overrides);
   if (!options.ok()) return Fail(options.status().message());
-  const StatusOr<Sequence> sequence = LoadSequence(sequence_dir, false);
-  if (!sequence.ok()) return Fail(sequence.status().message());
-  const StatusOr<std::vector<Eigen::Isometry3d>> gt =
-      ReadPoseFile(sequence_dir + "/gt/rig_from_object.txt");
-  if (!gt.ok()) return Fail(gt.status().message());
-  const StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
-  if (!mesh.ok()) return Fail(mesh.status().message());
+  const StatusOr<bench::GroundTruthSequence> loaded = bench::LoadGroundTruthSequence(sequence_dir);
+  if (!loaded.ok()) return Fail(loaded.status().message());
+  const Sequence* sequence = &loaded->sequence;
+  const std::vector<Eigen::Isometry3d>* gt = &loaded->truth;
+  const Mesh* mesh = &loaded->mesh;
   const RayCaster caster(*mesh);
   const Eigen::Isometry3d template_from_objcentre = mesh->objcentre_from_template().inverse();
   const EdgeLineOptions& edge = options->tracker.frame.edge.lines;

@@ -45,6 +45,7 @@
 #include "bcot/render/ray_caster.h"
 #include "bcot/synth/synth_options.h"
 #include "bcot/synth/synthesizer.h"
+#include "ground_truth_sequence.h"
 
 namespace bcot {
 namespace {
@@ -181,18 +182,12 @@ int main(int argc, char** argv) {
     const int height = synth->cameras.height;
     const std::string dir =
         work_dir + "/" + fmt::format("{}_{}x{}_{}f", name, width, height, num_frames);
-    if (!std::filesystem::exists(dir + "/gt/rig_from_object.txt")) {
-      std::fprintf(stderr, "synthesizing %s ...\n", dir.c_str());
-      std::filesystem::remove_all(dir);
-      const Status status = Synthesize(*synth, dir);
-      if (!status.ok()) return Fail(status);
-    }
-    StatusOr<Sequence> sequence = LoadSequence(dir);
-    if (!sequence.ok()) return Fail(sequence.status());
-    StatusOr<std::vector<Eigen::Isometry3d>> truth = ReadPoseFile(dir + "/gt/rig_from_object.txt");
-    if (!truth.ok()) return Fail(truth.status());
-    StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
-    if (!mesh.ok()) return Fail(mesh.status());
+    StatusOr<bench::GroundTruthSequence> loaded = bench::SynthesizeOrLoad(
+        dir, name, [&](const std::string& out) { return Synthesize(*synth, out); });
+    if (!loaded.ok()) return Fail(loaded.status());
+    const Sequence* sequence = &loaded->sequence;
+    const std::vector<Eigen::Isometry3d>* truth = &loaded->truth;
+    const Mesh* mesh = &loaded->mesh;
     const RayCaster caster(*mesh);
     const Eigen::Isometry3d objcentre_from_template = mesh->objcentre_from_template();
     const Eigen::Isometry3d cam0_from_rig = sequence->rig[0].cam_from_rig;

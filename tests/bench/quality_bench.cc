@@ -37,6 +37,7 @@
 #include "bcot/quality/rigid_motion_fit.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
+#include "ground_truth_sequence.h"
 
 namespace bcot {
 namespace {
@@ -193,25 +194,20 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "quality_bench: %s\n", options.status().message().c_str());
     return 2;
   }
-  StatusOr<Sequence> sequence = LoadSequence(sequence_dir, false);
-  StatusOr<std::vector<Eigen::Isometry3d>> gt =
-      ReadPoseFile(sequence_dir + "/gt/rig_from_object.txt");
-  if (!sequence.ok() || !gt.ok()) {
-    std::fprintf(stderr, "quality_bench: %s\n",
-                 (!sequence.ok() ? sequence.status() : gt.status()).message().c_str());
+  StatusOr<bench::GroundTruthSequence> loaded = bench::LoadGroundTruthSequence(sequence_dir);
+  if (!loaded.ok()) {
+    std::fprintf(stderr, "quality_bench: %s\n", loaded.status().message().c_str());
     return 1;
   }
+  Sequence* sequence = &loaded->sequence;
+  std::vector<Eigen::Isometry3d>* gt = &loaded->truth;
+  const Mesh* mesh = &loaded->mesh;
   if (max_frames > 0 && max_frames < sequence->num_frames) {
     sequence->num_frames = max_frames;
     for (std::vector<std::string>& paths : sequence->image_paths) paths.resize(max_frames);
     if (!sequence->timestamps_ns.empty()) sequence->timestamps_ns.resize(max_frames);
   }
   gt->resize(sequence->num_frames);
-  const StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
-  if (!mesh.ok()) {
-    std::fprintf(stderr, "quality_bench: %s\n", mesh.status().message().c_str());
-    return 1;
-  }
   const RayCaster caster(*mesh);
   std::printf("%-10s %5s %-6s %10s %10s %10s %10s %8s %9s\n", "poses", "frame", "view", "meas_p90",
               "true_p90", "meas_med", "true_med", "sigma", "found");

@@ -30,6 +30,7 @@
 #include "bcot/core/trajectory_metrics.h"
 #include "bcot/optim/window_problem.h"
 #include "bcot/render/mesh.h"
+#include "ground_truth_sequence.h"
 
 namespace bcot {
 namespace {
@@ -150,15 +151,14 @@ int Run(int argc, char** argv) {
     const size_t colon = spec.rfind(':');
     const std::string dir = colon == std::string::npos ? spec : spec.substr(0, colon);
     const int step = colon == std::string::npos ? -1 : std::stoi(spec.substr(colon + 1));
-    StatusOr<Sequence> sequence = LoadSequence(dir);
-    StatusOr<std::vector<Eigen::Isometry3d>> truth = ReadPoseFile(dir + "/gt/rig_from_object.txt");
-    if (!sequence.ok() || !truth.ok()) {
-      std::fprintf(stderr, "%s: %s\n", dir.c_str(),
-                   (!sequence.ok() ? sequence.status() : truth.status()).message().c_str());
+    StatusOr<bench::GroundTruthSequence> loaded = bench::LoadGroundTruthSequence(dir);
+    if (!loaded.ok()) {
+      std::fprintf(stderr, "%s: %s\n", dir.c_str(), loaded.status().message().c_str());
       return 1;
     }
-    StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
-    if (!mesh.ok()) return 1;
+    const Sequence* sequence = &loaded->sequence;
+    const std::vector<Eigen::Isometry3d>* truth = &loaded->truth;
+    const Mesh* mesh = &loaded->mesh;
     const Eigen::Vector3d centre = mesh->objcentre_from_template().inverse().translation();
     std::vector<WindowSmoother> smoothers;
     smoothers.reserve(variants.size());

@@ -2,10 +2,9 @@
 // (Debian `chromium`, installed by scripts/setup.sh): the pages load without console messages
 // (our pages log nothing, so any console line is an error), their script ran (it sets
 // data-report-ready on <body>), and a screenshot is not blank. CTest label: browser.
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
-#include <fmt/format.h>
 
 #include <filesystem>
 #include <opencv2/core.hpp>
@@ -29,13 +28,9 @@ class ReportBrowserTest : public ::testing::Test {
     dir_ = new test::TempDir();
     if (!std::filesystem::exists(kChromium)) return;
     std::string output;
-    BCOT_CHECK(test::RunCommand(
-                   test::BcotBinary() + " synth --quiet --config " +
-                       test::SourcePath("configs/synth/demo.yaml") + " --out " +
-                       dir_->File("root/seq") +
-                       " --set cameras.width=160 --set cameras.height=128"
-                       " --set motion.num_frames=4 --set render.object_samples_per_axis=2",
-                   &output) == 0);
+    test::Synthesize(dir_->File("root/seq"),
+                     "--set cameras.width=160 --set cameras.height=128"
+                     " --set motion.num_frames=4 --set render.object_samples_per_axis=2");
     BCOT_CHECK(test::RunCommand(test::BcotBinary() + " batch --quiet " + dir_->File("root") +
                                     " --out " + dir_->File("out") + " --set frame.rounds=1",
                                 &output) == 0);
@@ -52,13 +47,13 @@ class ReportBrowserTest : public ::testing::Test {
   static int Chromium(const std::string& page, const std::string& mode, std::string* dom,
                       std::string* log) {
     test::TempDir profile;
-    const std::string command =
-        fmt::format("timeout 120 {} --headless --no-sandbox --disable-gpu --disable-quic "
-                    "--no-first-run --disable-background-networking --disable-component-update "
-                    "--disable-sync --user-data-dir={} --enable-logging=stderr --v=0 "
-                    "--window-size=1000,900 {} file://{} > {} 2> {}",
-                    kChromium, profile.File("profile"), mode, page, profile.File("stdout"),
-                    profile.File("stderr"));
+    const std::string command = fmt::format(
+        "timeout 120 {} --headless --no-sandbox --disable-gpu --disable-quic "
+        "--no-first-run --disable-background-networking --disable-component-update "
+        "--disable-sync --user-data-dir={} --enable-logging=stderr --v=0 "
+        "--window-size=1000,900 {} file://{} > {} 2> {}",
+        kChromium, profile.File("profile"), mode, page, profile.File("stdout"),
+        profile.File("stderr"));
     const int code = test::RunCommand(command);
     const StatusOr<std::string> out = ReadTextFile(profile.File("stdout"));
     const StatusOr<std::string> err = ReadTextFile(profile.File("stderr"));

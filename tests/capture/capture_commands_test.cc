@@ -17,10 +17,6 @@ using ::testing::HasSubstr;
 
 std::string Bcot(const std::string& arguments) { return test::BcotBinary() + " " + arguments; }
 
-int CountLines(const std::string& text) {
-  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-}
-
 TEST(CalibrateCommandTest, HelpListsTheOptions) {
   std::string output;
   EXPECT_EQ(test::RunCommand(Bcot("calibrate --help"), &output), 0);
@@ -38,7 +34,7 @@ TEST(CalibrateCommandTest, ConfigErrorsExitTwoWithOneLine) {
                             " --out " + dir.File("out")),
                        &output),
       2);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("input.images_dir"));
   // An unknown key in an override.
   EXPECT_EQ(test::RunCommand(Bcot("calibrate --images-dir " + dir.path() + " --out " +
@@ -58,7 +54,7 @@ TEST(CalibrateCommandTest, DataErrorsExitOneNamingTheFile) {
                                   dir.File("out")),
                              &output),
             1);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("left01.png"));
 }
 
@@ -100,7 +96,7 @@ TEST(CaptureCommandTest, AnUnknownDeviceExitsOneNamingIt) {
                dir.File("seq") + " --set 'cameras=[{name: c0, device_id: Missing-Cam-7}]'"),
           &output),
       1);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("Missing-Cam-7"));
   EXPECT_FALSE(std::filesystem::exists(dir.File("seq")));
 }

@@ -72,15 +72,10 @@ TEST(ColorHistogramsTest, PosteriorsAndTemporalBlending) {
   EXPECT_FALSE(histograms.Update({}, {}, 0.1, 0.2));
 }
 
-class ColorModelSceneTest : public ::testing::Test {
+class ColorModelSceneTest : public test::SpoolImageTest {
  protected:
   void SetUp() override {
-    mesh_ = std::make_unique<Mesh>(test::TestSpoolMesh());
-    caster_ = std::make_unique<RayCaster>(*mesh_);
-    camera_ = test::TestCamera();
-    cam_from_objcentre_ =
-        test::MakeCamFromObjcentre(Eigen::Vector3d(0.3, 0.5, 0.1), {10.0, -5.0, 450.0});
-    image_ = test::RenderTestImage(*caster_, camera_, cam_from_objcentre_);
+    SpoolImageTest::SetUp();
     silhouette_ = SilhouetteAt(cam_from_objcentre_);
   }
 
@@ -113,11 +108,6 @@ class ColorModelSceneTest : public ::testing::Test {
     *outside = mean(model.ForegroundPosteriors(image_, outside_pixels));
   }
 
-  std::unique_ptr<Mesh> mesh_;
-  std::unique_ptr<RayCaster> caster_;
-  Camera camera_;
-  Eigen::Isometry3d cam_from_objcentre_;
-  cv::Mat3b image_;
   Silhouette silhouette_;
 };
 

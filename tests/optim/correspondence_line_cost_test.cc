@@ -28,16 +28,8 @@ using test::ScenarioCamera;
 using test::SeededTwist;
 using ::testing::HasSubstr;
 
-class CorrespondenceLineTest : public ::testing::Test {
+class CorrespondenceLineTest : public test::SpoolCasterTest {
  protected:
-  static void SetUpTestSuite() {
-    mesh_ = new Mesh(test::TestSpoolMesh());
-    caster_ = new RayCaster(*mesh_);
-  }
-  static void TearDownTestSuite() {
-    delete caster_;
-    delete mesh_;
-  }
   // Lines at T0 = `rig_from_objcentre0`, the colour model learned at T0 from `image`.
   static CorrespondenceLines MakeLines(const Camera& camera, const cv::Mat3b& image,
                                        const Eigen::Isometry3d& rig_from_objcentre0,
@@ -54,8 +46,6 @@ class CorrespondenceLineTest : public ::testing::Test {
     BCOT_CHECK(lines.ok());
     return std::move(lines).value();
   }
-  static inline Mesh* mesh_ = nullptr;
-  static inline RayCaster* caster_ = nullptr;
 };
 
 TEST(CorrespondenceLineOptionsTest, ValidateListsEveryViolation) {

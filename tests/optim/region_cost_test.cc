@@ -24,16 +24,8 @@ using test::Scenario;
 using test::ScenarioCamera;
 using test::SeededTwist;
 
-class RegionCostTest : public ::testing::Test {
+class RegionCostTest : public test::SpoolCasterTest {
  protected:
-  static void SetUpTestSuite() {
-    mesh_ = new Mesh(test::TestSpoolMesh());
-    caster_ = new RayCaster(*mesh_);
-  }
-  static void TearDownTestSuite() {
-    delete caster_;
-    delete mesh_;
-  }
   // Template at T0 = truth · Exp(small seeded twist), colour model learned at T0.
   static RegionTemplate MakeTemplate(const Scenario& scenario, const Camera& camera,
                                      std::mt19937& rng, const cv::Mat3b& image) {
@@ -52,13 +44,7 @@ class RegionCostTest : public ::testing::Test {
     BCOT_CHECK(region_template.ok());
     return std::move(region_template).value();
   }
-
-  static Mesh* mesh_;
-  static RayCaster* caster_;
 };
-
-Mesh* RegionCostTest::mesh_ = nullptr;
-RayCaster* RegionCostTest::caster_ = nullptr;
 
 TEST(RegionCostOptionsTest, ValidateListsEveryViolation) {
   EXPECT_TRUE(RegionCostOptions().Validate().ok());

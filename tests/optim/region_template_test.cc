@@ -27,15 +27,10 @@ TEST(RegionTemplateOptionsTest, ValidateListsEveryViolation) {
   }
 }
 
-class RegionTemplateTest : public ::testing::Test {
+class RegionTemplateTest : public test::SpoolImageTest {
  protected:
   void SetUp() override {
-    mesh_ = std::make_unique<Mesh>(test::TestSpoolMesh());
-    caster_ = std::make_unique<RayCaster>(*mesh_);
-    camera_ = test::TestCamera();
-    cam_from_objcentre_ =
-        test::MakeCamFromObjcentre(Eigen::Vector3d(0.3, 0.5, 0.1), {10.0, -5.0, 450.0});
-    image_ = test::RenderTestImage(*caster_, camera_, cam_from_objcentre_);
+    SpoolImageTest::SetUp();
     rig_from_objcentre_ = test::RigFromObjcentre(cam_from_objcentre_);
     silhouette_ =
         RenderSilhouette(*caster_, camera_, cam_from_objcentre_ * mesh_->objcentre_from_template(),
@@ -43,12 +38,7 @@ class RegionTemplateTest : public ::testing::Test {
     color_model_.Update(image_, silhouette_);
   }
 
-  std::unique_ptr<Mesh> mesh_;
-  std::unique_ptr<RayCaster> caster_;
-  Camera camera_;
-  Eigen::Isometry3d cam_from_objcentre_;
   Eigen::Isometry3d rig_from_objcentre_;
-  cv::Mat3b image_;
   Silhouette silhouette_;
   GlobalColorModel color_model_{ColorModelOptions()};
 };

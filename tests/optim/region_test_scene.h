@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <random>
 #include <string>
@@ -159,19 +160,43 @@ inline Mesh TestBunnyMesh() {
   return bunny->Transformed(Eigen::Isometry3d::Identity(), 150.0 / bunny->diameter());
 }
 
-// A test fixture sharing one bunny mesh and its ray caster across the suite's tests.
-class BunnyCasterTest : public ::testing::Test {
+// A test fixture sharing one mesh (made by `kMakeMesh`) and its ray caster across the suite's
+// tests.
+template <Mesh (*kMakeMesh)()>
+class SharedCasterTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    mesh_ = new Mesh(TestBunnyMesh());
+    mesh_ = new Mesh(kMakeMesh());
     caster_ = new RayCaster(*mesh_);
   }
   static void TearDownTestSuite() {
     delete caster_;
     delete mesh_;
+    caster_ = nullptr;
+    mesh_ = nullptr;
   }
   static inline Mesh* mesh_ = nullptr;
   static inline RayCaster* caster_ = nullptr;
+};
+using BunnyCasterTest = SharedCasterTest<&TestBunnyMesh>;
+using SpoolCasterTest = SharedCasterTest<&TestSpoolMesh>;
+
+// A test fixture with the spool in the test camera at a fixed pose and its rendered image.
+class SpoolImageTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    mesh_ = std::make_unique<Mesh>(TestSpoolMesh());
+    caster_ = std::make_unique<RayCaster>(*mesh_);
+    camera_ = TestCamera();
+    cam_from_objcentre_ = MakeCamFromObjcentre(Eigen::Vector3d(0.3, 0.5, 0.1), {10.0, -5.0, 450.0});
+    image_ = RenderTestImage(*caster_, camera_, cam_from_objcentre_);
+  }
+
+  std::unique_ptr<Mesh> mesh_;
+  std::unique_ptr<RayCaster> caster_;
+  Camera camera_;
+  Eigen::Isometry3d cam_from_objcentre_ = Eigen::Isometry3d::Identity();
+  cv::Mat3b image_;
 };
 
 // Two 640×480 cameras 90° apart looking at an object 450 mm away: the rig frame is camera 0's,

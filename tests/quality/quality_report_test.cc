@@ -250,25 +250,14 @@ TEST(QualityReportTest, OptionsRoundTripAndErrorsNameLineAndKey) {
   EXPECT_THAT(margin.message(), HasSubstr("q.yaml:3: quality.color_margin_px = 3"));
 }
 
-// Runs `bcot synth` with `config` (under configs/synth/) and `settings` into `out`.
-void Synthesize(const std::string& config, const std::string& settings, const std::string& out) {
-  std::string output;
-  const int code = test::RunCommand(test::BcotBinary() + " synth --quiet --config " +
-                                        test::SourcePath("configs/synth/" + config) + " --out " +
-                                        out + " " + settings,
-                                    &output);
-  BCOT_CHECK(code == 0);
-}
-
 // A 6-frame 320×256 binocular 90° sequence (cluttered and plain backgrounds) with ground truth.
 class QualityOnSynthTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new test::TempDir();
-    Synthesize("demo.yaml",
-               "--set cameras.width=320 --set cameras.height=256 --set motion.num_frames=6"
-               " --set render.object_samples_per_axis=2",
-               dir_->File("seq"));
+    test::Synthesize(dir_->File("seq"),
+                     "--set cameras.width=320 --set cameras.height=256 --set motion.num_frames=6"
+                     " --set render.object_samples_per_axis=2");
   }
   static void TearDownTestSuite() { delete dir_; }
   static test::TempDir* dir_;
@@ -318,7 +307,7 @@ TEST_F(QualityOnSynthTest, TruePosesAcceptedPosesOffsetBy3PxRejected) {
 // motion fit correct annotations were rejected.
 TEST(QualityOnHardSynthTest, TruePosesAcceptedPosesOffsetBy3PxRejected) {
   test::TempDir dir;
-  Synthesize("glossy_fast.yaml", "--set motion.num_frames=4", dir.File("seq"));
+  test::Synthesize(dir.File("seq"), "--set motion.num_frames=4", "glossy_fast.yaml");
   ExpectTruthAcceptedAndThreePixelOffsetRejected(dir.File("seq"), 0.7);
 }
 

@@ -19,82 +19,46 @@ using test::TempDir;
 using test::WriteText;
 using ::testing::HasSubstr;
 
-// A cube [-1, 1]³ with quad faces (triangulated on load), in each text format.
-constexpr char kCubeObj[] = R"(# cube
-v -1 -1 -1
-v 1 -1 -1
-v 1 1 -1
-v -1 1 -1
-v -1 -1 1
-v 1 -1 1
-v 1 1 1
-v -1 1 1
-f 1 4 3 2
-f 5 6 7 8
-f 1 2 6 5
-f 2 3 7 6
-f 3 4 8 7
-f 4 1 5 8
-)";
+// A cube [-1, 1]³ with quad faces (triangulated on load), written in each text format from one
+// vertex and face list.
+constexpr int kCubeVertices[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                     {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+constexpr int kCubeQuads[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                  {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
 
-constexpr char kCubePly[] = R"(ply
-format ascii 1.0
-element vertex 8
-property float x
-property float y
-property float z
-element face 6
-property list uchar int vertex_indices
-end_header
--1 -1 -1
-1 -1 -1
-1 1 -1
--1 1 -1
--1 -1 1
-1 -1 1
-1 1 1
--1 1 1
-4 0 3 2 1
-4 4 5 6 7
-4 0 1 5 4
-4 1 2 6 5
-4 2 3 7 6
-4 3 0 4 7
-)";
+std::string CubeVertexLine(const char* prefix, int i) {
+  const int* v = kCubeVertices[i];
+  return prefix + std::to_string(v[0]) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) +
+         "\n";
+}
 
-constexpr char kCubeOff[] = R"(OFF
-8 6 0
--1 -1 -1
-1 -1 -1
-1 1 -1
--1 1 -1
--1 -1 1
-1 -1 1
-1 1 1
--1 1 1
-4 0 3 2 1
-4 4 5 6 7
-4 0 1 5 4
-4 1 2 6 5
-4 2 3 7 6
-4 3 0 4 7
-)";
+// OBJ (1-based indices), PLY and OFF (0-based, "4 a b c d" faces).
+std::string CubeText(const std::string& format) {
+  std::string text;
+  if (format == "obj") text = "# cube\n";
+  if (format == "ply") {
+    text =
+        "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n";
+  }
+  if (format == "off") text = "OFF\n8 6 0\n";
+  for (int i = 0; i < 8; ++i) text += CubeVertexLine(format == "obj" ? "v " : "", i);
+  for (const auto& q : kCubeQuads) {
+    const int base = format == "obj" ? 1 : 0;
+    text += format == "obj" ? "f" : "4";
+    for (int i : q) text += " " + std::to_string(i + base);
+    text += "\n";
+  }
+  return text;
+}
 
 // ASCII STL: 12 triangles, every vertex repeated per facet (as STL always does).
 std::string CubeStl() {
-  const double v[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                          {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-  const int quads[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                           {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
   std::string stl = "solid cube\n";
-  auto vertex = [&](int i) {
-    return "      vertex " + std::to_string(v[i][0]) + " " + std::to_string(v[i][1]) + " " +
-           std::to_string(v[i][2]) + "\n";
-  };
-  for (const auto& q : quads) {
+  for (const auto& q : kCubeQuads) {
     for (const auto& tri : {std::array<int, 3>{q[0], q[1], q[2]}, {q[0], q[2], q[3]}}) {
       stl += "  facet normal 0 0 0\n    outer loop\n";
-      for (int i : tri) stl += vertex(i);
+      for (int i : tri) stl += CubeVertexLine("      vertex ", i);
       stl += "    endloop\n  endfacet\n";
     }
   }
@@ -128,10 +92,7 @@ TEST_P(MeshFormatTest, LoadsCubeInEveryFormat) {
   TempDir dir;
   const std::string format = GetParam();
   const std::string path = dir.File("cube." + format);
-  if (format == "obj") WriteText(path, kCubeObj);
-  if (format == "ply") WriteText(path, kCubePly);
-  if (format == "off") WriteText(path, kCubeOff);
-  if (format == "stl") WriteText(path, CubeStl());
+  WriteText(path, format == "stl" ? CubeStl() : CubeText(format));
 
   const StatusOr<Mesh> mesh = Mesh::Load(path);
   ASSERT_TRUE(mesh.ok()) << mesh.status().message();
@@ -376,7 +337,7 @@ TEST(MeshTest, DegenerateBoundingBox) {
 TEST(MeshTest, RejectsBadUnit) {
   TempDir dir;
   const std::string path = dir.File("cube.obj");
-  WriteText(path, kCubeObj);
+  WriteText(path, CubeText("obj"));
   for (double unit : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
                       std::numeric_limits<double>::infinity()}) {
     const StatusOr<Mesh> mesh = Mesh::Load(path, unit);

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "test_meshes.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -135,27 +136,7 @@ Mesh MakeSquareFrame(double outer, double inner, double half_thickness) {
   return Mesh::FromArrays(std::move(vertices), std::move(triangles));
 }
 
-// Torus around the z axis: tube centre circle radius `major`, tube radius `minor` (mm).
-Mesh MakeTorus(double major, double minor, int segments_u, int segments_v) {
-  std::vector<Eigen::Vector3f> vertices;
-  std::vector<Eigen::Vector3i> triangles;
-  for (int i = 0; i < segments_u; ++i) {
-    const double u = 2.0 * kPi * i / segments_u;
-    for (int j = 0; j < segments_v; ++j) {
-      const double v = 2.0 * kPi * j / segments_v;
-      vertices.emplace_back((major + minor * std::cos(v)) * std::cos(u),
-                            (major + minor * std::cos(v)) * std::sin(u), minor * std::sin(v));
-    }
-  }
-  auto index = [&](int i, int j) { return (i % segments_u) * segments_v + (j % segments_v); };
-  for (int i = 0; i < segments_u; ++i) {
-    for (int j = 0; j < segments_v; ++j) {
-      triangles.emplace_back(index(i, j), index(i + 1, j), index(i + 1, j + 1));
-      triangles.emplace_back(index(i, j), index(i + 1, j + 1), index(i, j + 1));
-    }
-  }
-  return Mesh::FromArrays(std::move(vertices), std::move(triangles));
-}
+using test::MakeTorus;
 
 Mesh SpoolMesh() {
   const StatusOr<Mesh> spool = Mesh::Load(test::SourcePath("data/meshes/spool.off"));

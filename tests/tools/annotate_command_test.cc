@@ -17,31 +17,20 @@ namespace {
 
 using ::testing::HasSubstr;
 
-int CountLines(const std::string& text) {
-  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-}
-
 // A 3-frame 160×128 binocular sequence made once by `bcot synth`.
 class AnnotateCommandTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new test::TempDir();
-    std::string output;
-    const int code = test::RunCommand(
-        test::BcotBinary() + " synth --quiet --config " +
-            test::SourcePath("configs/synth/demo.yaml") + " --out " + dir_->File("seq") +
-            " --set cameras.width=160 --set cameras.height=128 --set motion.num_frames=3"
-            " --set distractors.count=1 --set render.object_samples_per_axis=2",
-        &output);
-    BCOT_CHECK(code == 0);
+    test::Synthesize(dir_->File("seq"),
+                     "--set cameras.width=160 --set cameras.height=128 --set motion.num_frames=3"
+                     " --set distractors.count=1 --set render.object_samples_per_axis=2");
   }
   static void TearDownTestSuite() { delete dir_; }
 
   // A private copy of the sequence the test may break.
   static std::string CopySequence(const test::TempDir& into) {
-    std::filesystem::copy(dir_->File("seq"), into.File("seq"),
-                          std::filesystem::copy_options::recursive);
-    return into.File("seq");
+    return test::CopyTree(dir_->File("seq"), into.File("seq"));
   }
   static std::string Annotate(const std::string& arguments) {
     return test::BcotBinary() + " annotate --quiet " + arguments;
@@ -98,7 +87,7 @@ TEST_F(AnnotateCommandTest, OutMustBeAnAnnotationDirectoryUnlessOverwrite) {
     std::filesystem::copy(out.File("ann"), dir, std::filesystem::copy_options::recursive);
     ASSERT_TRUE(WriteFileAtomic(dir + "/" + foreign, "mine\n").ok());
     EXPECT_EQ(test::RunCommand(Annotate(dir_->File("seq") + " --out " + dir + track), &output), 2);
-    EXPECT_EQ(CountLines(output), 1) << output;
+    EXPECT_EQ(test::CountLines(output), 1) << output;
     EXPECT_THAT(output, HasSubstr(dir));
     EXPECT_THAT(output, HasSubstr("'" + foreign + "'"));
     EXPECT_THAT(output, HasSubstr("--overwrite"));
@@ -158,7 +147,7 @@ TEST_F(AnnotateCommandTest, LogProgressProvenanceAndReportConfig) {
             kExitRejected)
       << output;
   EXPECT_THAT(output, HasSubstr("rejected"));
-  EXPECT_EQ(CountLines(output), 1) << output;  // --quiet: the verdict line only
+  EXPECT_EQ(test::CountLines(output), 1) << output;  // --quiet: the verdict line only
   test::WriteText(out.File("typo.yaml"), "quality:\n  treshold_px: 1\n");
   EXPECT_EQ(test::RunCommand(test::BcotBinary() + " report " + out.File("ann") + " --config " +
                                  out.File("typo.yaml"),
@@ -181,7 +170,7 @@ TEST_F(AnnotateCommandTest, KeyframesAndFrameRangeFromTheCommandLine) {
                                       dir.File("keys.txt")),
                              &output),
             0);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("keys.txt:1: expected 12 numbers"));
 
   const StatusOr<std::vector<Eigen::Isometry3d>> truth =
@@ -219,7 +208,7 @@ TEST_F(AnnotateCommandTest, BadConfigValueIsAConfigError) {
                 Annotate(dir_->File("seq") + " --out " + out.File("ann") + " --set frame.rounds=0"),
                 &output),
             2);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("frame.rounds = 0"));
 }
 
@@ -229,7 +218,7 @@ TEST_F(AnnotateCommandTest, BadInitPoseIsAOneLineErrorWithItsLine) {
   test::WriteText(seq + "/init_pose.txt", "1 0 0 0 1 0 0 0 1 0 0\n");  // 11 numbers
   std::string output;
   EXPECT_EQ(test::RunCommand(Annotate(seq + " --out " + work.File("ann")), &output), 1);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("init_pose.txt"));
 }
 
@@ -240,7 +229,7 @@ TEST_F(AnnotateCommandTest, MissingCameraFolderIsAOneLineError) {
   std::string output;
   const int code = test::RunCommand(Annotate(seq + " --out " + work.File("ann")), &output);
   EXPECT_TRUE(code == 1 || code == 2) << code;
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("cam1"));
 }
 
@@ -250,7 +239,7 @@ TEST_F(AnnotateCommandTest, MeshThatDoesNotLoadIsAOneLineError) {
   test::WriteText(seq + "/model/bunny.obj", "");
   std::string output;
   EXPECT_EQ(test::RunCommand(Annotate(seq + " --out " + work.File("ann")), &output), 1);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("bunny.obj"));
   EXPECT_FALSE(std::filesystem::exists(work.File("ann/DONE")));
 }
@@ -259,7 +248,7 @@ TEST_F(AnnotateCommandTest, MissingSequenceIsAnError) {
   std::string output;
   const int code = test::RunCommand(Annotate("/nonexistent/seq --out /tmp/x"), &output);
   EXPECT_TRUE(code == 1 || code == 2) << code;
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
 }
 
 }  // namespace

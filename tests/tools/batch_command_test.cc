@@ -34,16 +34,11 @@ class BatchCommandTest : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = new test::TempDir();
     for (int i = 0; i < kSequences; ++i) {
-      std::string output;
-      const int code = test::RunCommand(
-          test::BcotBinary() + " synth --quiet --config " +
-              test::SourcePath("configs/synth/demo.yaml") + " --out " +
-              dir_->File(fmt::format("root/group{}/seq{}", i % 2, i)) +
-              " --set cameras.width=160 --set cameras.height=128 --set distractors.count=0" +
+      test::Synthesize(
+          dir_->File(fmt::format("root/group{}/seq{}", i % 2, i)),
+          "--set cameras.width=160 --set cameras.height=128 --set distractors.count=0" +
               fmt::format(" --set motion.num_frames={} --set seed={}", kFrames, i + 1) +
-              " --set render.object_samples_per_axis=2",
-          &output);
-      BCOT_CHECK(code == 0);
+              " --set render.object_samples_per_axis=2");
     }
   }
   static void TearDownTestSuite() { delete dir_; }

@@ -15,9 +15,6 @@ namespace {
 using ::testing::HasSubstr;
 
 std::string Bcot(const std::string& arguments) { return test::BcotBinary() + " " + arguments; }
-int CountLines(const std::string& text) {
-  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-}
 std::string Quoted(const std::string& path) { return "'" + path + "'"; }
 
 TEST(EvalCommandTest, OfflineWritesEveryReportAndPrintsTheTable) {
@@ -46,7 +43,7 @@ TEST(EvalCommandTest, ErrorsAreOneLineWithTheRightExitCode) {
                 Bcot("eval --data " + dir.File("data") + " --online --tracker-set frame.rounds=0"),
                 &output),
             2);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("frame.rounds"));
 
   test::WriteText(dir.File("results/s/Cat/pose.txt"), "1 0 0 0 1 0 0 0 1 0 0 0\n1 0 0 0 1 0\n");
@@ -54,14 +51,14 @@ TEST(EvalCommandTest, ErrorsAreOneLineWithTheRightExitCode) {
       test::RunCommand(
           Bcot("eval --data " + dir.File("data") + " --results " + dir.File("results")), &output),
       1);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("results/s/Cat/pose.txt:2"));
 
   EXPECT_EQ(test::RunCommand(Bcot("eval --data " + dir.File("data") + " --results " +
                                   dir.File("results") + " --set layout=ycb"),
                              &output),
             2);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("layout = 'ycb'"));
   EXPECT_EQ(test::RunCommand(Bcot("eval --data " + dir.File("data")), &output), 2);
 }

@@ -20,10 +20,6 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 std::string Bcot(const std::string& arguments) { return test::BcotBinary() + " " + arguments; }
-int CountLines(const std::string& text) {
-  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-}
-
 // A binocular synthetic sequence, 160×128, 3 frames; its gt/ is the annotation.
 class ExportCommandTest : public ::testing::Test {
  protected:
@@ -52,7 +48,7 @@ class ExportCommandTest : public ::testing::Test {
 TEST_F(ExportCommandTest, DefaultsAreEveryFrameFullResolutionThePresetIsTheRelease) {
   std::string output;
   ASSERT_EQ(test::RunCommand(Export(dir_.File("seq/gt"), dir_.File("full")), &output), 0) << output;
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("bcot format: 3 of 3 frames"));
   EXPECT_THAT(output, HasSubstr("160x128 (full resolution)"));
   EXPECT_THAT(output, HasSubstr("cameras cam0,cam1 (2 of 2)"));
@@ -87,21 +83,21 @@ TEST_F(ExportCommandTest, DefaultsAreEveryFrameFullResolutionThePresetIsTheRelea
 
   // Exporting again needs --overwrite; errors are one line with the usage exit code.
   EXPECT_EQ(test::RunCommand(Export(dir_.File("seq/gt"), dir_.File("full")), &output), 2);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_EQ(
       test::RunCommand(Export(dir_.File("seq/gt"), dir_.File("full"), "--overwrite"), &output), 0)
       << output;
   EXPECT_EQ(test::RunCommand(Export(dir_.File("seq/gt"), dir_.File("x"), "--set image_scale=0.3"),
                              &output),
             2);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("image_scale = 0.3"));
   EXPECT_EQ(
       test::RunCommand(Export(dir_.File("seq/gt"), dir_.File("x"), "--preset paper"), &output), 2);
   EXPECT_EQ(test::RunCommand(Export(dir_.File("seq/gt"), dir_.File("x"), "--frames 2:1"), &output),
             2);
   EXPECT_EQ(test::RunCommand(Export(dir_.File("nowhere"), dir_.File("x")), &output), 1);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
 }
 
 TEST_F(ExportCommandTest, BopSceneWithOneCameraTypePerView) {
@@ -134,7 +130,7 @@ TEST_F(ExportCommandTest, RejectedAnnotationNeedsIncludeRejected) {
   std::string output;
   EXPECT_EQ(test::RunCommand(Export(dir_.File("ann"), dir_.File("out"), "--format bop"), &output),
             kExitRejected);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr(dir_.File("ann")));
   EXPECT_THAT(output, HasSubstr("rejected"));
   EXPECT_THAT(output, HasSubstr("--include-rejected"));

@@ -19,31 +19,20 @@ namespace {
 
 using ::testing::HasSubstr;
 
-int CountLines(const std::string& text) {
-  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-}
-
 // A 3-frame 320×256 binocular (90°) sequence made once by `bcot synth`, init_pose.txt removed.
 class InitCommandTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new test::TempDir();
-    std::string output;
-    const int code = test::RunCommand(
-        test::BcotBinary() + " synth --quiet --config " +
-            test::SourcePath("configs/synth/demo.yaml") + " --out " + dir_->File("seq") +
-            " --set cameras.width=320 --set cameras.height=256 --set motion.num_frames=3"
-            " --set distractors.count=1 --set render.object_samples_per_axis=2",
-        &output);
-    BCOT_CHECK(code == 0);
+    test::Synthesize(dir_->File("seq"),
+                     "--set cameras.width=320 --set cameras.height=256 --set motion.num_frames=3"
+                     " --set distractors.count=1 --set render.object_samples_per_axis=2");
     std::filesystem::remove(dir_->File("seq/init_pose.txt"));
   }
   static void TearDownTestSuite() { delete dir_; }
 
   static std::string CopySequence(const test::TempDir& into) {
-    std::filesystem::copy(dir_->File("seq"), into.File("seq"),
-                          std::filesystem::copy_options::recursive);
-    return into.File("seq");
+    return test::CopyTree(dir_->File("seq"), into.File("seq"));
   }
   static std::string Init(const std::string& arguments) {
     return test::BcotBinary() + " init " + arguments;
@@ -127,7 +116,7 @@ TEST_F(InitCommandTest, ExistingOutputIsRefusedWithoutOverwrite) {
   test::WriteText(seq + "/init_pose.txt", "1 0 0 0 1 0 0 0 1 0 0 600\n");
   std::string output;
   EXPECT_EQ(test::RunCommand(Init(seq + TrueClick(0, {0, 0}) + TrueClick(1, {0, 0})), &output), 2);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr(seq + "/init_pose.txt exists"));
   EXPECT_THAT(output, HasSubstr("--overwrite"));
 }
@@ -156,7 +145,7 @@ TEST_F(InitCommandTest, BadClicksAreOneLineErrorsNamingTheFlag) {
     std::string output;
     EXPECT_EQ(test::RunCommand(Init(seq + c.arguments + " --out /nonexistent/x.txt"), &output), 2)
         << c.arguments << ": " << output;
-    EXPECT_EQ(CountLines(output), 1) << output;
+    EXPECT_EQ(test::CountLines(output), 1) << output;
     EXPECT_THAT(output, HasSubstr(c.expected)) << c.arguments;
   }
 }
@@ -167,7 +156,7 @@ TEST_F(InitCommandTest, BadSearchOptionIsAConfigError) {
       test::RunCommand(Init(dir_->File("seq") + " --click cam0:10,10 --set init.grid_rotations=5"),
                        &output),
       2);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("init.grid_rotations = 5"));
 }
 

@@ -17,10 +17,6 @@ std::string Synth(const std::string& arguments) {
   return test::BcotBinary() + " synth " + arguments;
 }
 
-int CountLines(const std::string& text) {
-  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-}
-
 TEST(SynthCommandTest, HelpExitsZero) {
   std::string output;
   EXPECT_EQ(test::RunCommand(Synth("--help"), &output), 0);
@@ -44,7 +40,7 @@ TEST(SynthCommandTest, BadConfigIsAOneLineConfigErrorNamingFileAndKey) {
   std::string output;
   EXPECT_EQ(test::RunCommand(Synth("--config " + config + " --out " + dir.File("out")), &output),
             2);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("bad.yaml:3"));
   EXPECT_THAT(output, HasSubstr("speed"));
   EXPECT_FALSE(std::filesystem::exists(dir.File("out")));
@@ -54,7 +50,7 @@ TEST(SynthCommandTest, BadConfigIsAOneLineConfigErrorNamingFileAndKey) {
                                    " --out " + dir.File("out") + " --set motion.fps=-1"),
                              &output),
             2);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_THAT(output, HasSubstr("motion.fps = -1"));
 }
 
@@ -81,7 +77,7 @@ TEST(SynthCommandTest, TinyRunWritesEveryContractFile) {
 
   // A second run into the same directory needs --overwrite.
   EXPECT_EQ(test::RunCommand(command, &output), 2);
-  EXPECT_EQ(CountLines(output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
   EXPECT_EQ(test::RunCommand(command + " --overwrite --quiet", &output), 0) << output;
 }
 

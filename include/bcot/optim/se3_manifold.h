@@ -14,10 +14,12 @@
 // (see AmbientFromLieJacobian).
 #pragma once
 
+#include <ceres/cost_function.h>
 #include <ceres/manifold.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "bcot/core/se3.h"
 
@@ -40,6 +42,19 @@ Eigen::Matrix<double, kPoseTangentSize, kPoseAmbientSize> TangentFromAmbientJaco
 // with respect to the tangent δ is `lie_jacobian` (rows × 6).
 void AmbientFromLieJacobian(const Eigen::Matrix<double, Eigen::Dynamic, 6>& lie_jacobian,
                             const double* parameters, double* ambient_jacobian_row_major);
+
+// Lie Jacobian (1×6) of aᵀ·π(X_c), the projection π of a model point X (in O_o) read along the
+// image direction a, X_c = cam_from_objcentre·Exp(δ)·X (DESIGN.md S.19):
+//   ∂(aᵀπ)/∂δ = aᵀ·∂π/∂X_c·R_c·[I | −X^]
+// `d_pixel_d_point` = ∂π/∂X_c (Camera::Project), `rotation` = R_c of cam_from_objcentre.
+Eigen::Matrix<double, 1, 6> ProjectionLieJacobian(
+    const Eigen::RowVector2d& direction, const Eigen::Matrix<double, 2, 3>& d_pixel_d_point,
+    const Eigen::Matrix3d& rotation, const Eigen::Vector3d& point_in_objcentre);
+
+// The residuals of a cost function on one pose block at `pose_parameters` (no Jacobians); false
+// when the evaluation fails.
+bool EvaluatePoseResiduals(const ceres::CostFunction& cost, const double* pose_parameters,
+                           std::vector<double>* residuals);
 
 class Se3Manifold final : public ceres::Manifold {
  public:

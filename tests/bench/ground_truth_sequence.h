@@ -1,0 +1,53 @@
+// A sequence with ground truth (the layout `bcot synth` and scripts/pbr_synth.sh write:
+// gt/rig_from_object.txt beside the input contract), loaded once for the accuracy benchmarks.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bcot/core/pose_io.h"
+#include "bcot/core/sequence.h"
+#include "bcot/core/status.h"
+#include "bcot/render/mesh.h"
+
+namespace bcot::bench {
+
+struct GroundTruthSequence {
+  Sequence sequence;
+  std::vector<Eigen::Isometry3d> truth;  // rig_from_object per frame (gt/rig_from_object.txt)
+  Mesh mesh;                             // the object's mesh in mm
+};
+
+inline std::string TruthPath(const std::string& dir) { return dir + "/gt/rig_from_object.txt"; }
+
+// Loads the sequence in `dir` (init_pose.txt not required), its ground truth and its mesh.
+inline StatusOr<GroundTruthSequence> LoadGroundTruthSequence(const std::string& dir) {
+  StatusOr<Sequence> sequence = LoadSequence(dir, /*require_init_pose=*/false);
+  if (!sequence.ok()) return sequence.status();
+  StatusOr<std::vector<Eigen::Isometry3d>> truth = ReadPoseFile(TruthPath(dir));
+  if (!truth.ok()) return truth.status();
+  StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
+  if (!mesh.ok()) return mesh.status();
+  return GroundTruthSequence{std::move(sequence).value(), std::move(truth).value(),
+                             std::move(mesh).value()};
+}
+
+// Runs `synthesize(dir)` unless `dir` already holds a ground truth (a finished synthesis is
+// reused across runs; an unfinished one is removed and made again), then loads it.
+template <typename SynthesizeFn>
+StatusOr<GroundTruthSequence> SynthesizeOrLoad(const std::string& dir, const std::string& label,
+                                               SynthesizeFn&& synthesize) {
+  if (!std::filesystem::exists(TruthPath(dir))) {
+    std::fprintf(stderr, "synthesizing %s (%s) ...\n", dir.c_str(), label.c_str());
+    std::filesystem::remove_all(dir);
+    const Status status = synthesize(dir);
+    if (!status.ok()) return status;
+  }
+  return LoadGroundTruthSequence(dir);
+}
+
+}  // namespace bcot::bench
