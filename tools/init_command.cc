@@ -87,7 +87,8 @@ void AddInitCommand(CLI::App& app, int* exit_code) {
   command->add_option("--frame", flags->frame, "Frame to initialise")->capture_default_str();
   command->add_option("--click", flags->clicks,
                       "CAM:X,Y: the object's centre in camera CAM's image, pixel column X and "
-                      "row Y (repeatable; two or more views are triangulated)");
+                      "row Y (repeatable; two or more views are triangulated). Without any, the "
+                      "object is found by its motion over the sequence (init.motion_*)");
   command
       ->add_option_function<double>(
           "--distance-mm",

@@ -400,9 +400,8 @@ StatusOr<BatchResult> RegenerateBatchReports(const std::string& out_dir,
   for (const std::string& relative : annotated) {
     BatchSequenceResult entry;
     entry.relative_path = relative;
-    const StatusOr<QualityReport> report =
-        RegenerateQualityReport((fs::path(out_dir) / relative).string(), "", config_path,
-                                overrides);
+    const StatusOr<QualityReport> report = RegenerateQualityReport(
+        (fs::path(out_dir) / relative).string(), "", config_path, overrides);
     if (!report.ok()) {
       entry.outcome = BatchOutcome::kFailed;
       entry.error = report.status().message();
@@ -480,7 +479,8 @@ std::string BatchSummaryHtml(const BatchResult& result) {
       "collapse}}td,th{{border:1px solid #ccc;padding:3px 8px}}th{{cursor:pointer;background:"
       "#eee}}tr.accepted td:nth-child(2){{background:#dfd}}tr.rejected td:nth-child(2)"
       "{{background:#fdd}}tr.failed td:nth-child(2){{background:#fc9}}</style></head><body>\n"
-      "<h1>bcot batch summary</h1><p class='provenance'><small>{}</small></p><p id='counts'>{} accepted, {} rejected, {} failed of {} "
+      "<h1>bcot batch summary</h1><p class='provenance'><small>{}</small></p><p id='counts'>{} "
+      "accepted, {} rejected, {} failed of {} "
       "sequences. Click a column header to sort.</p>\n<table id='summary'><thead><tr>"
       "<th>sequence</th><th>verdict</th><th>this run</th><th>worst error (px)</th><th>frames"
       "</th><th>bad frame-views</th><th>cannot "

@@ -73,6 +73,28 @@ void DeclareSearch(OptionSchema<InitOptions>* s) {
                    ? ""
                    : "must be > init.min_extent_fraction";
       });
+  s->Add(
+       "init.motion_frames", [](auto& o) -> auto& { return o.search.motion.frames; }, "",
+       "no --click: frames sampled over the sequence for the background of the moving object")
+      .Range(AtLeast(3));
+  s->Add(
+       "init.motion_width_px", [](auto& o) -> auto& { return o.search.motion.work_width_px; }, "px",
+       "... views resized to this width")
+      .Range(AtLeast(32));
+  s->Add(
+       "init.motion_threshold_sigmas",
+       [](auto& o) -> auto& { return o.search.motion.threshold_sigmas; }, "",
+       "... a pixel changed beyond this many robust sigmas of the change ...")
+      .Range(Positive());
+  s->Add(
+       "init.motion_min_change", [](auto& o) -> auto& { return o.search.motion.min_change; }, "",
+       "... and beyond this many grey levels")
+      .Range(NonNegative());
+  s->Add(
+       "init.motion_min_area_fraction",
+       [](auto& o) -> auto& { return o.search.motion.min_area_fraction; }, "",
+       "... smallest changed region taken for the object (fraction of the image)")
+      .Range(Open(0, 1));
 }
 
 OptionSchema<InitOptions>* BuildInitOptionSchema() {
@@ -153,8 +175,8 @@ Status CheckInitRequest(const Sequence& sequence, const InitRequest& request) {
   }
   if (request.clicks.empty()) {
     return Status::InvalidConfig(
-        "give --click CAM:X,Y (the object's centre) in at least one view, better two; bcot "
-        "init has no automatic position search");
+        "give --click CAM:X,Y (the object's centre) in at least one view, better two (without "
+        "any, bcot init looks for the moving object)");
   }
   for (size_t i = 0; i < request.clicks.size(); ++i) {
     const ImageClick& click = request.clicks[i];

@@ -370,6 +370,42 @@ Status WriteOverlays(const std::string& stem, const Eigen::Isometry3d& rig_from_
   return Status::Ok();
 }
 
+// The clicks of InitializeSequenceDir's motion search (see initializer.h).
+StatusOr<std::vector<ImageClick>> ClicksOnMovingObject(const Sequence& sequence,
+                                                       const std::vector<MovingObjectView>& views,
+                                                       double mesh_diameter, int frame) {
+  std::vector<ImageClick> clicks;
+  std::vector<RigRay> rays;
+  std::string changed;
+  int largest = -1;
+  for (int v = 0; v < static_cast<int>(views.size()); ++v) {
+    changed += fmt::format("{}{} {:.2f} %", changed.empty() ? "" : ", ", views[v].camera,
+                           100.0 * views[v].changed_fraction);
+    if (!views[v].found) continue;
+    clicks.push_back({views[v].camera, views[v].centroid_px});
+    rays.push_back(PixelRayInRig(sequence.rig[v], views[v].centroid_px));
+    if (largest < 0 || views[v].area_fraction > views[largest].area_fraction) {
+      largest = static_cast<int>(clicks.size()) - 1;
+    }
+  }
+  if (clicks.empty()) {
+    return Status::InvalidInput(fmt::format(
+        "no moving object found at frame {} (changed pixels: {}); give --click CAM:X,Y on the "
+        "object's centre",
+        frame, changed));
+  }
+  if (rays.size() >= 2) {
+    const StatusOr<Eigen::Vector3d> centre = TriangulateRays(rays);
+    double miss = std::numeric_limits<double>::infinity();
+    if (centre.ok()) {
+      miss = 0.0;
+      for (const RigRay& ray : rays) miss = std::max(miss, DistanceToRay(ray, *centre));
+    }
+    if (miss > 0.5 * mesh_diameter) return std::vector<ImageClick>{clicks[largest]};
+  }
+  return clicks;
+}
+
 }  // namespace
 
 StatusOr<InitResult> FindInitialPose(const Sequence& sequence, const RayCaster& caster,
@@ -443,7 +479,21 @@ StatusOr<InitResult> InitializeSequenceDir(const std::string& sequence_dir,
   BCOT_RETURN_IF_ERROR(options.Validate());
   BCOT_ASSIGN_OR_RETURN(const Sequence sequence,
                         LoadSequence(sequence_dir, /*require_init_pose=*/false));
-  BCOT_RETURN_IF_ERROR(CheckInitRequest(sequence, request));
+  InitRequest resolved = request;
+  std::vector<MovingObjectView> moving_object;
+  if (request.clicks.empty() && !request.distance_mm.has_value() && request.frame >= 0 &&
+      request.frame < sequence.num_frames) {
+    BCOT_RETURN_IF_ERROR(CheckInitOutputs(outputs));  // before the search, not after it
+    BCOT_ASSIGN_OR_RETURN(moving_object,
+                          FindMovingObject(sequence, request.frame, options.search.motion));
+  }
+  BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
+                        Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
+  if (!moving_object.empty()) {
+    BCOT_ASSIGN_OR_RETURN(resolved.clicks, ClicksOnMovingObject(sequence, moving_object,
+                                                                mesh.diameter(), request.frame));
+  }
+  BCOT_RETURN_IF_ERROR(CheckInitRequest(sequence, resolved));
   BCOT_RETURN_IF_ERROR(CheckInitOutputs(outputs));
   std::vector<cv::Mat3b> images;
   for (int v = 0; v < sequence.rig.size(); ++v) {
@@ -451,18 +501,34 @@ StatusOr<InitResult> InitializeSequenceDir(const std::string& sequence_dir,
                                                            sequence.rig[v].camera));
     images.push_back(image);
   }
-  BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
-                        Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
   const RayCaster caster(mesh);
   BCOT_ASSIGN_OR_RETURN(InitResult result,
-                        FindInitialPose(sequence, caster, images, request, options));
+                        FindInitialPose(sequence, caster, images, resolved, options));
+  result.moving_object = moving_object;
+  if (!moving_object.empty()) result.found_clicks = resolved.clicks;
   BCOT_RETURN_IF_ERROR(
       WriteInitOutputs(outputs, result, sequence, caster, images, &result.pose_files));
   return result;
 }
 
 std::string FormatInitSummary(const InitResult& result) {
-  std::string text = fmt::format(
+  std::string text;
+  if (!result.moving_object.empty()) {
+    text += "moving object:";
+    for (const MovingObjectView& view : result.moving_object) {
+      text += view.found ? fmt::format(" {} region {:.2f} % of the image at ({:.1f}, {:.1f});",
+                                       view.camera, 100.0 * view.area_fraction,
+                                       view.centroid_px.x(), view.centroid_px.y())
+                         : fmt::format(" {} none;", view.camera);
+    }
+    text += " clicks taken:";
+    for (const ImageClick& click : result.found_clicks) {
+      text +=
+          fmt::format(" --click {}:{:.0f},{:.0f}", click.camera, click.pixel.x(), click.pixel.y());
+    }
+    text += "\n";
+  }
+  text += fmt::format(
       "centre ({:.1f}, {:.1f}, {:.1f}) mm in the rig from {}; {} poses scored in {:.1f} s, "
       "refined in {:.1f} s\n",
       result.centre_in_rig.x(), result.centre_in_rig.y(), result.centre_in_rig.z(),

@@ -135,7 +135,6 @@ TEST_F(InitCommandTest, BadClicksAreOneLineErrorsNamingTheFlag) {
       {" --click cam0", "--click 'cam0': expected CAM:X,Y"},
       {" --click cam0:1,2,3", "expected CAM:X,Y"},
       {" --click cam0:10,10 --click cam0:20,20", "clicked twice"},
-      {"", "give --click"},
       {" --click cam0:10,10 --click cam1:10,10 --distance-mm 500",
        "--distance-mm applies to a single"},
       {" --click cam0:10,10 --distance-mm -5", "--distance-mm -5"},
@@ -148,6 +147,46 @@ TEST_F(InitCommandTest, BadClicksAreOneLineErrorsNamingTheFlag) {
     EXPECT_EQ(test::CountLines(output), 1) << output;
     EXPECT_THAT(output, HasSubstr(c.expected)) << c.arguments;
   }
+}
+
+// Without --click the object is found by its motion: 12 frames in which it moves ~15 mm and 6°
+// per frame (more than its size over the sequence) in front of a static scene.
+TEST(InitWithoutClicksTest, FindsTheMovingObjectAndItsPose) {
+  test::TempDir work;
+  const std::string seq = work.File("seq");
+  test::Synthesize(seq,
+                   "--set cameras.width=320 --set cameras.height=256 --set motion.num_frames=12"
+                   " --set motion.translation_mm_per_frame=15 --set motion.rotation_deg_per_frame=6"
+                   " --set distractors.count=1 --set render.object_samples_per_axis=2");
+  std::filesystem::remove(seq + "/init_pose.txt");
+  std::string output;
+  ASSERT_EQ(test::RunCommand(test::BcotBinary() + " init " + seq, &output), 0) << output;
+  EXPECT_THAT(output, HasSubstr("moving object: cam0 region"));
+  EXPECT_THAT(output, HasSubstr("clicks taken: --click cam0:"));
+  EXPECT_THAT(output, HasSubstr("from 2 clicks"));
+  const StatusOr<std::vector<Eigen::Isometry3d>> found = ReadPoseFile(seq + "/init_pose.txt");
+  ASSERT_TRUE(found.ok()) << found.status().message();
+  const StatusOr<std::vector<Eigen::Isometry3d>> truth =
+      ReadPoseFile(seq + "/gt/rig_from_object.txt");
+  ASSERT_TRUE(truth.ok()) << truth.status().message();
+  EXPECT_THAT(found->front(), test::PoseNear(truth->front(), 5.0, 10.0));
+}
+
+// An object that never moves is not found: a one-line error that asks for --click.
+TEST(InitWithoutClicksTest, AStillObjectAsksForAClick) {
+  test::TempDir work;
+  const std::string seq = work.File("seq");
+  test::Synthesize(seq,
+                   "--set cameras.width=160 --set cameras.height=128 --set motion.num_frames=4"
+                   " --set motion.translation_mm_per_frame=0 --set motion.rotation_deg_per_frame=0"
+                   " --set distractors.count=1 --set render.object_samples_per_axis=2");
+  std::filesystem::remove(seq + "/init_pose.txt");
+  std::string output;
+  EXPECT_EQ(test::RunCommand(test::BcotBinary() + " init " + seq, &output), 1) << output;
+  EXPECT_EQ(test::CountLines(output), 1) << output;
+  EXPECT_THAT(output, HasSubstr("no moving object found at frame 0"));
+  EXPECT_THAT(output, HasSubstr("give --click CAM:X,Y"));
+  EXPECT_FALSE(std::filesystem::exists(seq + "/init_pose.txt"));
 }
 
 TEST_F(InitCommandTest, BadSearchOptionIsAConfigError) {

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "bcot/annotate/annotate_options.h"
+#include "bcot/annotate/moving_object_finder.h"
 #include "bcot/core/sequence.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/frame_problem.h"
@@ -70,6 +71,8 @@ struct InitializerOptions {
   int depth_grid_rotations = 300;
   double min_extent_fraction = 0.08;
   double max_extent_fraction = 0.9;
+  // Without clicks: how the moving object is found (moving_object_finder.h).
+  MovingObjectOptions motion;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
@@ -126,6 +129,10 @@ struct InitResult {
   double search_seconds = 0.0;
   double refine_seconds = 0.0;
   std::vector<std::string> pose_files;  // written by InitializeSequenceDir, pose_path first
+  // InitializeSequenceDir without clicks: the views where the moving object was looked for
+  // (moving_object_finder.h), and the clicks taken from them.
+  std::vector<MovingObjectView> moving_object;
+  std::vector<ImageClick> found_clicks;
 };
 
 // The search and refinement on the frame's images (rig order, capture size). The request must
@@ -157,7 +164,11 @@ Status WriteInitOutputs(const InitOutputs& outputs, const InitResult& result,
 
 // The whole command: load the sequence and its frame, check the request and the outputs
 // before any work, search, write (result.pose_files). Every camera of the rig is used (the
-// annotate options' views.* are not).
+// annotate options' views.* are not). Without clicks (and without a distance) the object is
+// found by its motion (FindMovingObject): a click at the moving region's centroid in every
+// view where one is found; when the rays of two or more such clicks pass farther than half the
+// mesh's diameter from their triangulated point, only the view with the largest region is
+// kept (its depth then searched). kInvalidInput when no view shows a moving region.
 StatusOr<InitResult> InitializeSequenceDir(const std::string& sequence_dir,
                                            const InitRequest& request, const InitOptions& options,
                                            const InitOutputs& outputs);
