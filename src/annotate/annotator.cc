@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
@@ -15,6 +16,7 @@
 
 #include "bcot/annotate/done_file.h"
 #include "bcot/annotate/output_dir.h"
+#include "bcot/annotate/pose_scorer.h"
 #include "bcot/annotate/splice.h"
 #include "bcot/annotate/tracking_plan.h"
 #include "bcot/core/annotation_poses.h"
@@ -329,17 +331,92 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
     if (progress) progress(frame + 1 - span.first, span_frames);
   };
 
+  // Between two anchors a < b each frame is solved twice, forwards from a and backwards from b;
+  // the solve of the nearer anchor (tracking_plan.h) is kept unless the two disagree and the
+  // other one scores better (pose_scorer.h: colour models learned at each pose, so the scores
+  // compare), e.g. when tracking from the nearer anchor lost the object at a jump between it
+  // and the frame. Poses within these bounds agree:
+  constexpr double kAgreeDeg = 2.0;
+  const double agree_mm = 0.02 * mesh.diameter();
+  Rig view_rig;
+  for (const TrackedView& view : *views) view_rig.Add({view.camera, view.cam_from_rig});
+  struct OtherSolve {
+    Eigen::Isometry3d rig_from_objcentre = Eigen::Isometry3d::Identity();
+    bool usable = false;
+  };
+  const auto choose = [&](int frame, Solved nearer, const OtherSolve& other) -> StatusOr<Solved> {
+    if (!other.usable) return nearer;
+    const bool agree =
+        nearer.record.summary.usable() &&
+        RotationDistanceDeg(nearer.rig_from_objcentre.linear(),
+                            other.rig_from_objcentre.linear()) <= kAgreeDeg &&
+        (nearer.rig_from_objcentre.translation() - other.rig_from_objcentre.translation()).norm() <=
+            agree_mm;
+    if (agree) return nearer;
+    BCOT_ASSIGN_OR_RETURN(const std::vector<cv::Mat3b> images, read_images(frame));
+    const PoseScorer scorer(caster, view_rig, images, PoseScorerOptions());
+    const double nearer_score = nearer.record.summary.usable()
+                                    ? scorer.Score(nearer.rig_from_objcentre)
+                                    : std::numeric_limits<double>::infinity();
+    if (!(scorer.Score(other.rig_from_objcentre) < nearer_score)) return nearer;
+    // The frame is solved again from the other pose, so that its record and templates are a
+    // solve's (the tracker restarts there, as at an anchor).
+    Eigen::Isometry3d rig_from_objcentre = other.rig_from_objcentre;
+    return solve(frame, /*initialize=*/true, &rig_from_objcentre);
+  };
+
   // Tracking plans in frames counted from the first anchor or the span, whichever is earlier.
   const int plan_first = std::min(span.first, anchors.begin()->first);
   std::vector<int> anchor_frames;
   for (const auto& anchor : anchors) anchor_frames.push_back(anchor.first - plan_first);
-  for (const TrackingSegment& segment : PlanTracking(anchor_frames, span.end - plan_first)) {
+  const std::vector<TrackingSegment> segments = PlanTracking(anchor_frames, span.end - plan_first);
+  for (size_t s = 0; s < segments.size(); ++s) {
+    const TrackingSegment& segment = segments[s];
     const int anchor = plan_first + segment.anchor;
     const int first = plan_first + segment.first;
     const int end = plan_first + segment.end;
     Eigen::Isometry3d rig_from_objcentre = anchors.at(anchor) * template_from_objcentre;
+    const bool gap = !segment.backward && s + 1 < segments.size() && segments[s + 1].backward &&
+                     plan_first + segments[s + 1].first == end;
+    if (gap) {
+      // Frames [a, mid) belong to anchor a, [mid, b) to anchor b; both passes cover (a, b).
+      const int a = anchor, mid = end, b = plan_first + segments[s + 1].anchor;
+      std::vector<Solved> forward;
+      std::vector<OtherSolve> forward_other(b - mid);
+      for (int frame = a; frame < b; ++frame) {
+        BCOT_ASSIGN_OR_RETURN(Solved solved, solve(frame, frame == a, &rig_from_objcentre));
+        if (frame < mid) {
+          forward.push_back(std::move(solved));
+        } else {
+          forward_other[frame - mid] = {solved.rig_from_objcentre, solved.record.summary.usable()};
+        }
+      }
+      rig_from_objcentre = anchors.at(b) * template_from_objcentre;
+      BCOT_RETURN_IF_ERROR(solve(b, true, &rig_from_objcentre).status());
+      std::vector<Solved> backward(b - mid);
+      std::vector<OtherSolve> backward_other(mid - a);  // frame a has none: it is the anchor
+      for (int frame = b - 1; frame > a; --frame) {
+        BCOT_ASSIGN_OR_RETURN(Solved solved, solve(frame, false, &rig_from_objcentre));
+        if (frame >= mid) {
+          backward[frame - mid] = std::move(solved);
+        } else {
+          backward_other[frame - a] = {solved.rig_from_objcentre, solved.record.summary.usable()};
+        }
+      }
+      for (int frame = a; frame < b; ++frame) {
+        BCOT_ASSIGN_OR_RETURN(
+            Solved chosen,
+            frame < mid
+                ? choose(frame, std::move(forward[frame - a]), backward_other[frame - a])
+                : choose(frame, std::move(backward[frame - mid]), forward_other[frame - mid]));
+        record(frame, std::move(chosen));
+      }
+      ++s;  // the backward segment of the gap is done
+      continue;
+    }
     if (segment.backward) {
-      // The anchor frame starts the tracker; its forward segment records it.
+      // Before the first anchor. The anchor frame starts the tracker; its forward segment
+      // records it.
       BCOT_RETURN_IF_ERROR(solve(anchor, true, &rig_from_objcentre).status());
       std::vector<Solved> solved(end - first);
       for (int frame = end - 1; frame >= first; --frame) {

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "bcot/annotate/pose_scorer.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/image_io.h"
 #include "bcot/core/pose_io.h"
@@ -42,102 +43,14 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// The views of a sequence resized to a common scale: what the candidates are scored on.
-struct ScaledView {
-  Camera camera;
-  Eigen::Isometry3d cam_from_rig = Eigen::Isometry3d::Identity();
-  cv::Mat3b image;
-};
-
-// The region energy of all views at a pose with colour models learned at that pose (see the
-// header comment). Score is const and thread-safe: every call owns its colour models.
-class PoseScorer {
- public:
-  PoseScorer(const RayCaster& caster, const Rig& rig, const std::vector<cv::Mat3b>& images,
-             int width_px, const InitializerOptions& options)
-      : caster_(caster), objcentre_from_template_(caster.mesh().objcentre_from_template()) {
-    for (int v = 0; v < rig.size(); ++v) {
-      const Camera& camera = rig[v].camera;
-      const double scale = std::min(1.0, double(width_px) / camera.width);
-      ScaledView view;
-      view.camera = scale < 1.0 ? camera.Scaled(scale) : camera;
-      view.cam_from_rig = rig[v].cam_from_rig;
-      if (scale < 1.0) {
-        cv::resize(images[v], view.image, cv::Size(view.camera.width, view.camera.height), 0, 0,
-                   cv::INTER_AREA);
-      } else {
-        view.image = images[v];
-      }
-      views_.push_back(std::move(view));
-    }
-    color_.kind = ColorModelKind::kGlobal;
-    color_.refine_kind.reset();
-    color_.bins_per_channel = options.bins_per_channel;
-    color_.background_band_px = options.background_band_px;
-    color_.sample_margin_px = 1.0;
-    region_.band_px = options.band_px;
-    region_.stride_px = 1;
-    region_.contour.sample_spacing_px = 1.0;
-    region_.contour.precision_px = 1.0 / 16.0;
-  }
-
-  // The mean over the views of each view's mean F per band pixel; a view without band pixels
-  // (the object outside it, or behind its camera) counts as uninformative, F = log 2 (P_f = P_b
-  // = ½), so that poses hiding the object from some views do not escape their evidence. +∞ when
-  // no view has a band pixel.
-  double Score(const Eigen::Isometry3d& rig_from_objcentre) const {
-    double sum = 0.0;
-    bool any_visible = false;
-    for (const ScaledView& view : views_) {
-      const std::optional<double> mean = ViewMeanEnergy(view, rig_from_objcentre);
-      any_visible = any_visible || mean.has_value();
-      sum += mean.value_or(std::log(2.0));
-    }
-    if (!any_visible || !std::isfinite(sum)) return std::numeric_limits<double>::infinity();
-    return sum / views_.size();
-  }
-
-  // The object's silhouette masks at the pose, one per view.
-  std::vector<cv::Mat1b> Masks(const Eigen::Isometry3d& rig_from_objcentre) const {
-    std::vector<cv::Mat1b> masks;
-    for (const ScaledView& view : views_) {
-      masks.push_back(
-          RenderSilhouetteMask(caster_, view.camera,
-                               view.cam_from_rig * rig_from_objcentre * objcentre_from_template_)
-              .mask);
-    }
-    return masks;
-  }
-
- private:
-  // Mean F per band pixel of one view with a colour model learned at the pose; none when the
-  // view has no band pixel.
-  std::optional<double> ViewMeanEnergy(const ScaledView& view,
-                                       const Eigen::Isometry3d& rig_from_objcentre) const {
-    const Silhouette silhouette = RenderSilhouette(
-        caster_, view.camera, view.cam_from_rig * rig_from_objcentre * objcentre_from_template_,
-        region_.contour);
-    if (silhouette.contour.empty()) return std::nullopt;
-    GlobalColorModel model(color_);
-    model.Update(view.image, silhouette);
-    if (!model.initialized()) return std::nullopt;
-    StatusOr<RegionTemplate> region_template =
-        BuildRegionTemplate(caster_, view.camera, view.cam_from_rig, rig_from_objcentre, view.image,
-                            model, silhouette, region_);
-    if (!region_template.ok() || region_template->pixels.empty()) return std::nullopt;
-    const double pixels = static_cast<double>(region_template->pixels.size());
-    const RegionCostFunction cost(view.camera, view.cam_from_rig, std::move(*region_template),
-                                  cost_);
-    return cost.Energy(ToPoseParameters(rig_from_objcentre).data()) / pixels;
-  }
-
-  const RayCaster& caster_;
-  Eigen::Isometry3d objcentre_from_template_;
-  std::vector<ScaledView> views_;
-  ColorModelOptions color_;
-  RegionTemplateOptions region_;
-  RegionCostOptions cost_;
-};
+PoseScorerOptions ScorerOptions(const InitializerOptions& search, int width_px) {
+  PoseScorerOptions options;
+  options.width_px = width_px;
+  options.band_px = search.band_px;
+  options.bins_per_channel = search.bins_per_channel;
+  options.background_band_px = search.background_band_px;
+  return options;
+}
 
 struct ScoredPose {
   Eigen::Isometry3d rig_from_objcentre = Eigen::Isometry3d::Identity();
@@ -417,7 +330,8 @@ StatusOr<InitResult> FindInitialPose(const Sequence& sequence, const RayCaster& 
   const InitializerOptions& search = options.search;
   InitResult result;
   const auto search_start = Clock::now();
-  const PoseScorer coarse(caster, sequence.rig, images, search.search_width_px, search);
+  const PoseScorer coarse(caster, sequence.rig, images,
+                          ScorerOptions(search, search.search_width_px));
   BCOT_ASSIGN_OR_RETURN(
       const std::vector<ScoredPose> starts,
       SearchGrid(sequence, coarse, caster.mesh().diameter(), request, search, &result));
@@ -426,7 +340,8 @@ StatusOr<InitResult> FindInitialPose(const Sequence& sequence, const RayCaster& 
   const auto refine_start = Clock::now();
   BCOT_ASSIGN_OR_RETURN(std::vector<InitCandidate> refined,
                         Refine(sequence, caster, images, starts, options));
-  const PoseScorer ranker(caster, sequence.rig, images, search.rank_width_px, search);
+  const PoseScorer ranker(caster, sequence.rig, images,
+                          ScorerOptions(search, search.rank_width_px));
   result.candidates = RankDistinct(std::move(refined), ranker, caster.mesh(), search.same_iou);
   result.refine_seconds = SecondsSince(refine_start);
   if (result.candidates.empty() || !std::isfinite(result.candidates.front().energy)) {
