@@ -185,6 +185,57 @@ TEST_F(AnnotatorTest, AKeyframeMendsFramesBeforeAndAfterIt) {
   }
 }
 
+// A sequence whose object jumps (12 frames of 6° and 4 mm dropped between frames 5 and 6): a
+// keyframe at frame 6 mends the frames after the jump, and the frames before it that belong to
+// the keyframe (3–5, nearer to it than to frame 0) keep the forward solve from frame 0, which
+// scores better than the backward track across the jump.
+TEST(AnnotatorJumpTest, AKeyframeAfterAJumpKeepsTheFramesBeforeIt) {
+  namespace fs = std::filesystem;
+  test::TempDir dir;
+  const StatusOr<SynthOptions> synth =
+      ReadSynthOptions(test::SourcePath("configs/synth/demo.yaml"),
+                       {"cameras.width=320", "cameras.height=256", "motion.num_frames=22",
+                        "motion.rotation_deg_per_frame=6", "motion.translation_mm_per_frame=4",
+                        "render.object_samples_per_axis=2"});
+  ASSERT_TRUE(synth.ok()) << synth.status().message();
+  ASSERT_TRUE(Synthesize(*synth, dir.File("full")).ok());
+  const std::vector<int> keep = {0, 1, 2, 3, 4, 5, 18, 19, 20, 21};
+  const std::string seq = dir.File("seq");
+  fs::create_directories(seq);
+  for (const char* name : {"rig.yaml", "object.yaml", "init_pose.txt"}) {
+    fs::copy(dir.File("full/") + name, seq + "/" + name);
+  }
+  fs::copy(dir.File("full/model"), seq + "/model", fs::copy_options::recursive);
+  for (const char* camera : {"cam0", "cam1"}) {
+    fs::create_directories(seq + "/" + camera);
+    for (size_t i = 0; i < keep.size(); ++i) {
+      fs::copy(fmt::format("{}/{}/{:06d}.png", dir.File("full"), camera, keep[i]),
+               fmt::format("{}/{}/{:06d}.png", seq, camera, i));
+    }
+  }
+  const StatusOr<std::vector<Eigen::Isometry3d>> full_truth =
+      ReadPoseFile(dir.File("full/gt/rig_from_object.txt"));
+  ASSERT_TRUE(full_truth.ok());
+  std::vector<Eigen::Isometry3d> truth;
+  for (int frame : keep) truth.push_back((*full_truth)[frame]);
+
+  StatusOr<Sequence> sequence = LoadSequence(seq);
+  ASSERT_TRUE(sequence.ok()) << sequence.status().message();
+  const AnnotateOptions options;
+  const StatusOr<SequenceAnnotation> without = AnnotateSequence(*sequence, options);
+  ASSERT_TRUE(without.ok()) << without.status().message();
+  EXPECT_THAT(without->rig_from_object[5], test::PoseNear(truth[5], 0.5, 1.0));
+  EXPECT_THAT(without->rig_from_object[6], ::testing::Not(test::PoseNear(truth[6], 5.0, 10.0)));
+
+  test::WriteText(dir.File("keys.txt"), "6 " + FormatPoseLine(truth[6]) + "\n");
+  ASSERT_TRUE(LoadKeyframes(dir.File("keys.txt"), &*sequence).ok());
+  const StatusOr<SequenceAnnotation> with = AnnotateSequence(*sequence, options);
+  ASSERT_TRUE(with.ok()) << with.status().message();
+  for (size_t f = 0; f < keep.size(); ++f) {
+    EXPECT_THAT(with->rig_from_object[f], test::PoseNear(truth[f], 0.5, 1.0)) << "frame " << f;
+  }
+}
+
 TEST_F(AnnotatorTest, KeyframesArePartOfTheInputHash) {
   test::TempDir copy;
   const std::string seq = copy.File("seq");
