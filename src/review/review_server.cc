@@ -90,6 +90,9 @@ void ReviewServer::Impl::AddRoutes() {
   server.Get("/api/quality", [this](const httplib::Request&, httplib::Response& response) {
     SetJson(session.QualityJson(), response);
   });
+  server.Get("/api/trajectory", [this](const httplib::Request&, httplib::Response& response) {
+    SetJson(session.TrajectoryJson(), response);
+  });
   server.Get(R"(/api/frame/([^/]+)/diagnostics)", [this](const httplib::Request& request,
                                                          httplib::Response& response) {
     const StatusOr<int> frame = ParseFrameIndex(request.matches[1], session.sequence().num_frames);
@@ -101,7 +104,7 @@ void ReviewServer::Impl::AddRoutes() {
     const StatusOr<ReviewTarget> target = session.Resolve(request.matches[1], request.matches[2]);
     if (!target.ok()) return SetError(target.status(), response);
     const StatusOr<std::vector<unsigned char>> jpeg =
-        session.ViewJpeg(*target, options.jpeg_quality);
+        session.ViewJpeg(*target, options.jpeg_quality, request.get_param_value("mask") == "1");
     if (!jpeg.ok()) return SetError(jpeg.status(), response);
     response.set_header("Cache-Control", "no-store");
     response.set_content(reinterpret_cast<const char*>(jpeg->data()), jpeg->size(), "image/jpeg");

@@ -5,6 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bcot/core/image_io.h"
+#include "bcot/core/se3.h"
 #include "bcot/render/contour_drawing.h"
 
 namespace bcot {
@@ -95,8 +96,30 @@ std::string ReviewSession::DiagnosticsJson(int frame) const {
   return ordered_json{{"available", true}, {"frame", frame}, {"values", values}}.dump();
 }
 
+std::string ReviewSession::TrajectoryJson() const {
+  if (!annotation_) return ordered_json{{"available", false}}.dump();
+  const std::vector<Eigen::Isometry3d>& poses = annotation_->rig_from_object;
+  const Eigen::Vector3d centre = caster_.mesh().bbox_center();
+  ordered_json rotation = ordered_json::array(), x = ordered_json::array(),
+               y = ordered_json::array(), z = ordered_json::array();
+  for (const Eigen::Isometry3d& pose : poses) {
+    rotation.push_back(RotationDistanceDeg(poses.front().linear(), pose.linear()));
+    const Eigen::Vector3d position = pose * centre;
+    x.push_back(position.x());
+    y.push_back(position.y());
+    z.push_back(position.z());
+  }
+  ordered_json keyframes = ordered_json::array();
+  for (const auto& keyframe : sequence_.keyframes) keyframes.push_back(keyframe.first);
+  return ordered_json{{"available", true},
+                      {"rotation_deg", rotation},
+                      {"centre_mm", {{"x", x}, {"y", y}, {"z", z}}},
+                      {"keyframes", keyframes}}
+      .dump();
+}
+
 StatusOr<std::vector<unsigned char>> ReviewSession::ViewJpeg(const ReviewTarget& target,
-                                                             int jpeg_quality) const {
+                                                             int jpeg_quality, bool mask) const {
   BCOT_CHECK(target.frame >= 0 && target.frame < sequence_.num_frames);
   BCOT_CHECK(target.camera >= 0 && target.camera < sequence_.rig.size());
   const RigCamera& camera = sequence_.rig[target.camera];
@@ -106,6 +129,21 @@ StatusOr<std::vector<unsigned char>> ReviewSession::ViewJpeg(const ReviewTarget&
   if (annotation_) {
     const Eigen::Isometry3d cam_from_object =
         camera.cam_from_rig * annotation_->rig_from_object[target.frame];
+    if (mask) {
+      RenderOptions options;
+      options.depth = options.normal_in_cam = options.point_in_object = options.triangle_id = false;
+      const RenderedView view = caster_.Render(camera.camera, cam_from_object, options);
+      const cv::Rect roi = view.roi & cv::Rect(0, 0, image.cols, image.rows);
+      for (int y = roi.y; y < roi.y + roi.height; ++y) {
+        for (int x = roi.x; x < roi.x + roi.width; ++x) {
+          if (view.mask(y - view.roi.y, x - view.roi.x) == 0) continue;
+          cv::Vec3b& pixel = image(y, x);
+          pixel = cv::Vec3b(static_cast<uchar>(0.65 * pixel[0]),
+                            static_cast<uchar>(0.65 * pixel[1] + 0.35 * 255),
+                            static_cast<uchar>(0.65 * pixel[2]));
+        }
+      }
+    }
     DrawContour(caster_.ExtractContour(camera.camera, cam_from_object), cv::Scalar(0, 255, 0),
                 &image);
   }

@@ -7,7 +7,8 @@ pipe (--remote-debugging-pipe; Python's standard library only, no driver or npm 
 Opens URL, waits until the page has shown frame 0 with every image loaded, clicks the timeline
 at FRAME, and checks that the page then shows FRAME (number, slider, every view's image loaded
 at the camera's size); then → moves to FRAME + 1 and, when the page lists bad frames, clicking
-the first one shows it. Any console message or script exception is a failure (the page logs
+the first one shows it; with an annotation, the trajectory charts hold their series, a click on
+the rotation chart shows frame 0 and the mask box loads the tinted images. Any console message or script exception is a failure (the page logs
 nothing). Screenshots go to SCREENSHOT_DIR. Prints one line per check; exit 0 when all pass.
 """
 import base64
@@ -185,6 +186,34 @@ def run(binary, url, frame, shots):
                 browser.click(x, y)
                 expect_frame(browser, bad[0])
             print(f'ok: bad frames listed: {bad}')
+            if browser.evaluate('state.trajectory.available'):
+                paths = browser.evaluate("""[
+                    document.querySelectorAll('#rotation path').length,
+                    document.querySelectorAll('#translation path').length]""")
+                assert paths == [1, 3], f'trajectory charts hold {paths} series, not [1, 3]'
+                # Click the rotation chart where it draws frame 0.
+                x, y = browser.evaluate("""(() => {
+                    const svg = document.getElementById('rotation');
+                    svg.scrollIntoView({block: 'center'});
+                    const rect = svg.getBoundingClientRect();
+                    return [rect.left + timelineScale(svg).x(0), rect.top + rect.height / 2];
+                })()""")
+                browser.click(x, y)
+                expect_frame(browser, 0)
+                print('ok: trajectory charts drawn, a click on them shows the frame')
+                x, y = browser.evaluate("""(() => {
+                    const box = document.getElementById('mask');
+                    box.scrollIntoView({block: 'center'});
+                    const rect = box.getBoundingClientRect();
+                    return [rect.left + rect.width / 2, rect.top + rect.height / 2];
+                })()""")
+                browser.click(x, y)
+                browser.wait_for("[...document.querySelectorAll('#views img')].every("
+                                 "(img) => img.getAttribute('src').endsWith('?mask=1'))",
+                                 'the masked images')
+                expect_frame(browser, 0)
+                browser.screenshot(os.path.join(shots, 'review_mask.png'))
+                print('ok: the mask box shows the tinted silhouettes')
             browser.screenshot(os.path.join(shots, 'review_end.png'))
             problems = browser.problems()
             assert not problems, f'console messages or exceptions: {problems}'

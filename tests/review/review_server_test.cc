@@ -11,6 +11,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bcot/core/file_util.h"
+#include "bcot/core/pose_io.h"
+#include "bcot/core/se3.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -153,6 +155,51 @@ TEST_F(ReviewServerTest, FrameImagesWithAndWithoutContour) {
   EXPECT_TRUE(sequence["annotation"].is_null());
   EXPECT_FALSE(GetJson(client_without, "/api/quality")["available"]);
   EXPECT_FALSE(GetJson(client_without, "/api/frame/0/diagnostics")["available"]);
+}
+
+// The trajectory repeats rig_from_object.txt: the rotation from frame 0 and the position of the
+// mesh's bounding-box centre in the rig, per frame; no keyframes in this sequence.
+TEST_F(ReviewServerTest, TrajectoryOfTheAnnotation) {
+  RunningServer with(*annotated_);
+  RunningServer without(*bare_);
+  httplib::Client client = with.Client();
+  const json trajectory = GetJson(client, "/api/trajectory");
+  ASSERT_TRUE(trajectory["available"]);
+  ASSERT_EQ(trajectory["rotation_deg"].size(), static_cast<size_t>(kFrames));
+  EXPECT_EQ(trajectory["rotation_deg"][0], 0.0);
+  EXPECT_TRUE(trajectory["keyframes"].empty());
+  const StatusOr<std::vector<Eigen::Isometry3d>> poses =
+      ReadPoseFile(dir_->File("ann/rig_from_object.txt"));
+  ASSERT_TRUE(poses.ok());
+  const Eigen::Vector3d centre(trajectory["centre_mm"]["x"][2], trajectory["centre_mm"]["y"][2],
+                               trajectory["centre_mm"]["z"][2]);
+  // The centre moves with the pose: its offset from the pose's origin is the same rotated
+  // vector in every frame.
+  const Eigen::Vector3d in_object = (*poses)[2].inverse() * centre;
+  for (int f = 0; f < kFrames; ++f) {
+    const Eigen::Vector3d expected = (*poses)[f] * in_object;
+    EXPECT_NEAR(trajectory["centre_mm"]["x"][f].get<double>(), expected.x(), 1e-6) << f;
+    EXPECT_NEAR(trajectory["centre_mm"]["z"][f].get<double>(), expected.z(), 1e-6) << f;
+    EXPECT_NEAR(trajectory["rotation_deg"][f].get<double>(),
+                RotationDistanceDeg((*poses)[0].linear(), (*poses)[f].linear()), 1e-9)
+        << f;
+  }
+  httplib::Client bare = without.Client();
+  EXPECT_FALSE(GetJson(bare, "/api/trajectory")["available"]);
+}
+
+// ?mask=1 tints the silhouette green: the same image without it differs inside the object.
+TEST_F(ReviewServerTest, MaskTintsTheSilhouette) {
+  RunningServer running(*annotated_);
+  httplib::Client client = running.Client();
+  const cv::Mat plain = GetImage(client, "/api/frame/1/view/cam0.jpg");
+  const cv::Mat masked = GetImage(client, "/api/frame/1/view/cam0.jpg?mask=1");
+  ASSERT_EQ(plain.size(), masked.size());
+  cv::Mat channels[3];
+  cv::split(masked - plain, channels);  // saturating: where masked is greener / brighter
+  EXPECT_GT(cv::countNonZero(channels[1] > 40), 200) << "no green tint";
+  cv::split(plain - masked, channels);
+  EXPECT_GT(cv::countNonZero(channels[2] > 20), 100) << "red not darkened";
 }
 
 // Frames and cameras come from the sequence; anything else, path-like or not, is an error

@@ -42,9 +42,15 @@ class ReviewSession {
   // /api/frame/N/diagnostics: frames.csv's row of `frame` as {column: value}, or
   // {"available": false}. `frame` must be a valid index (CHECKed).
   std::string DiagnosticsJson(int frame) const;
-  // /api/frame/N/view/CAM.jpg: the frame image of the target's camera, with the silhouette
-  // contour of the annotated pose drawn in green when there is an annotation.
-  StatusOr<std::vector<unsigned char>> ViewJpeg(const ReviewTarget& target, int jpeg_quality) const;
+  // /api/frame/N/view/CAM.jpg[?mask=1]: the frame image of the target's camera, with the
+  // silhouette contour of the annotated pose drawn in green when there is an annotation, and
+  // with `mask` its silhouette tinted green at 35 % (where the model covers the image).
+  StatusOr<std::vector<unsigned char>> ViewJpeg(const ReviewTarget& target, int jpeg_quality,
+                                                bool mask = false) const;
+  // /api/trajectory: per frame of the annotation, the rotation (deg) of the object from its
+  // frame-0 orientation and the position of its bounding-box centre in the rig (mm), and the
+  // sequence's keyframes; {"available": false} without an annotation.
+  std::string TrajectoryJson() const;
 
  private:
   ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> annotation, const Mesh& mesh);

@@ -1,5 +1,5 @@
 // bcot review: the page of one sequence (and annotation). Plain JS, no framework, no network
-// beyond this server; the timeline is drawn as SVG by hand. The page marks its state on <body>
+// beyond this server; the timeline and the trajectory are drawn as SVG by hand. The page marks its state on <body>
 // for tests and scripts: data-frame (shown frame), data-loaded-frame (frame whose images have
 // all loaded), data-ready (sequence and quality read).
 'use strict';
@@ -10,6 +10,8 @@ const COLORS = ['#2a6', '#36c', '#c63', '#939', '#088', '#a80'];
 const state = {
   sequence: null,   // /api/sequence
   quality: null,    // /api/quality
+  trajectory: null, // /api/trajectory
+  mask: false,      // tint the model's silhouette on the images
   frame: 0,
   playing: false,
   views: [],        // {camera, img, viewport, label, zoom, x, y}
@@ -111,9 +113,11 @@ function showFrame(frame) {
   document.body.dataset.frame = String(frame);
   $('frame-number').textContent = String(frame);
   $('slider').value = String(frame);
+  delete document.body.dataset.loadedFrame;  // set again when the new images have loaded
   for (const view of state.views) {
     view.frame = frame;
-    view.img.src = `api/frame/${frame}/view/${encodeURIComponent(view.camera)}.jpg`;
+    view.img.src = `api/frame/${frame}/view/${encodeURIComponent(view.camera)}.jpg` +
+        (state.mask ? '?mask=1' : '');
   }
   moveCursor();
   loadDiagnostics(frame);
@@ -168,8 +172,7 @@ async function loadDiagnostics(frame) {
 
 const MARGIN = {left: 44, right: 10, top: 10, bottom: 24};
 
-function timelineScale() {
-  const svg = $('timeline');
+function timelineScale(svg = $('timeline')) {
   const width = svg.clientWidth || 800, height = svg.clientHeight || 220;
   const count = state.sequence.num_frames;
   const plotWidth = width - MARGIN.left - MARGIN.right;
@@ -244,11 +247,79 @@ function niceStep(raw) {
 }
 
 function moveCursor() {
-  const cursor = $('cursor');
-  if (!cursor || !state.sequence) return;
-  const px = timelineScale().x(state.frame);
-  cursor.setAttribute('x1', px);
-  cursor.setAttribute('x2', px);
+  if (!state.sequence) return;
+  for (const [cursorId, svgId] of [['cursor', 'timeline'], ['rotation-cursor', 'rotation'],
+                                   ['translation-cursor', 'translation']]) {
+    const cursor = $(cursorId);
+    if (!cursor) continue;
+    const px = timelineScale($(svgId)).x(state.frame);
+    cursor.setAttribute('x1', px);
+    cursor.setAttribute('x2', px);
+  }
+}
+
+// --- trajectory -------------------------------------------------------------------------------
+
+// One chart of the trajectory: `series` = [{name, values}] over the frames, keyframes as dashed
+// vertical lines, a cursor at the shown frame; values are drawn against their common range.
+function drawSeries(svg, series, cursorId) {
+  svg.replaceChildren();
+  const scale = timelineScale(svg);
+  const {width, height, x} = scale;
+  svg.setAttribute('viewBox', `0 0 ${width} ${height}`);
+  const bottom = height - MARGIN.bottom;
+  let lo = Infinity, hi = -Infinity;
+  for (const s of series) {
+    for (const v of s.values) {
+      lo = Math.min(lo, v);
+      hi = Math.max(hi, v);
+    }
+  }
+  if (!(hi > lo)) {
+    lo -= 1;
+    hi += 1;
+  }
+  const y = (value) => bottom - (value - lo) / (hi - lo) * (bottom - MARGIN.top);
+  for (const frame of state.trajectory.keyframes) {
+    const line = el('svg:line', {class: 'keyframe', x1: x(frame), x2: x(frame), y1: MARGIN.top,
+                                 y2: bottom, 'data-frame': frame});
+    line.appendChild(el('svg:title', {}, `keyframe ${frame}`));
+    svg.appendChild(line);
+  }
+  series.forEach((s, k) => {
+    const path = s.values.map((v, frame) => `${frame ? 'L' : 'M'}${x(frame)},${y(v)}`).join('');
+    svg.appendChild(el('svg:path', {d: path, fill: 'none', stroke: COLORS[k % COLORS.length],
+                                    'stroke-width': 1.5, 'data-series': s.name}));
+  });
+  svg.appendChild(el('svg:line', {class: 'axis', x1: MARGIN.left, x2: MARGIN.left,
+                                  y1: MARGIN.top, y2: bottom}));
+  svg.appendChild(el('svg:line', {class: 'axis', x1: MARGIN.left, x2: width - MARGIN.right,
+                                  y1: bottom, y2: bottom}));
+  for (let i = 0; i <= 4; ++i) {
+    const value = lo + (hi - lo) * i / 4;
+    svg.appendChild(el('svg:text', {x: 4, y: y(value) + 4}, value.toFixed(1)));
+  }
+  svg.appendChild(el('svg:line', {class: 'cursor', id: cursorId, y1: MARGIN.top, y2: bottom}));
+}
+
+function drawTrajectory() {
+  const trajectory = state.trajectory;
+  $('trajectory-section').hidden = !trajectory.available;
+  if (!trajectory.available) return;
+  const centre = trajectory.centre_mm;
+  const relative = (values) => values.map((v) => v - values[0]);
+  drawSeries($('rotation'), [{name: 'rotation', values: trajectory.rotation_deg}],
+             'rotation-cursor');
+  drawSeries($('translation'), [{name: 'x', values: relative(centre.x)},
+                                {name: 'y', values: relative(centre.y)},
+                                {name: 'z', values: relative(centre.z)}],
+             'translation-cursor');
+  const keyframes = trajectory.keyframes.length ?
+      `keyframes (dashed): ${trajectory.keyframes.join(', ')}` : 'no keyframes';
+  $('trajectory-note').textContent = 'Rotation from frame 0 (deg) and the object centre\'s ' +
+      'displacement from frame 0 along the rig axes (mm; x, y, z in the colours of the first ' +
+      `three views); ${keyframes}. Click to jump to a frame.`;
+  moveCursor();
 }
 
 function describeQuality() {
@@ -305,13 +376,26 @@ function bindControls() {
     }
     event.preventDefault();
   });
-  window.addEventListener('resize', drawTimeline);
+  for (const id of ['rotation', 'translation']) {
+    $(id).addEventListener('click', (event) => {
+      const rect = $(id).getBoundingClientRect();
+      showFrame(timelineScale($(id)).toFrame(event.clientX - rect.left));
+    });
+  }
+  $('mask').addEventListener('change', (event) => {
+    state.mask = event.target.checked;
+    showFrame(state.frame);
+  });
+  window.addEventListener('resize', () => {
+    drawTimeline();
+    drawTrajectory();
+  });
 }
 
 async function start() {
   try {
-    [state.sequence, state.quality] =
-        await Promise.all([getJson('api/sequence'), getJson('api/quality')]);
+    [state.sequence, state.quality, state.trajectory] = await Promise.all(
+        [getJson('api/sequence'), getJson('api/quality'), getJson('api/trajectory')]);
   } catch (error) {
     $('source').textContent = String(error);
     return;
@@ -327,6 +411,8 @@ async function start() {
   bindControls();
   describeQuality();
   drawTimeline();
+  drawTrajectory();
+  $('mask-label').hidden = !sequence.contour;
   showFrame(frameFromAddress());
   document.body.dataset.ready = 'yes';
 }
