@@ -4,9 +4,11 @@
 #include <httplib.h>
 
 #include <atomic>
+#include <cmath>
 #include <mutex>
 #include <thread>
 
+#include "bcot/core/file_util.h"
 #include "bcot/review/review_assets.h"
 
 namespace bcot {
@@ -34,6 +36,31 @@ void SetJson(const std::string& json, httplib::Response& response) {
   response.set_content(json, "application/json");
 }
 
+void Respond(const StatusOr<std::string>& json, httplib::Response& response) {
+  if (!json.ok()) return SetError(json.status(), response);
+  SetJson(*json, response);
+}
+
+// The nudge of a request's parameters dx, dy (px), dz (mm), rx, ry, rz (deg); absent = 0.
+StatusOr<PoseNudge> ParseNudge(const httplib::Request& request) {
+  PoseNudge nudge;
+  const std::pair<const char*, double*> fields[] = {{"dx", &nudge.dx_px},
+                                                    {"dy", &nudge.dy_px},
+                                                    {"dz", &nudge.dz_mm},
+                                                    {"rx", &nudge.rotation_deg.x()},
+                                                    {"ry", &nudge.rotation_deg.y()},
+                                                    {"rz", &nudge.rotation_deg.z()}};
+  for (const auto& [name, value] : fields) {
+    if (!request.has_param(name)) continue;
+    const std::string text = request.get_param_value(name);
+    if (!ParseDouble(text, value) || !std::isfinite(*value) || std::abs(*value) > 1e4) {
+      return Status::InvalidInput(
+          fmt::format("nudge {}='{}': expected a number of magnitude at most 10000", name, text));
+    }
+  }
+  return nudge;
+}
+
 // Serves the embedded asset `name`, or 404.
 void ServeAsset(const std::string& name, httplib::Response& response) {
   const ReviewAsset* asset = FindReviewAsset(name);
@@ -48,12 +75,12 @@ void ServeAsset(const std::string& name, httplib::Response& response) {
 }  // namespace
 
 struct ReviewServer::Impl {
-  Impl(const ReviewSession& session_in, const ReviewOptions& options_in)
+  Impl(ReviewSession& session_in, const ReviewOptions& options_in)
       : session(session_in), options(options_in) {}
 
   void AddRoutes();
 
-  const ReviewSession& session;
+  ReviewSession& session;
   const ReviewOptions options;
   httplib::Server server;
   int port = -1;
@@ -90,6 +117,29 @@ void ReviewServer::Impl::AddRoutes() {
   server.Get("/api/quality", [this](const httplib::Request&, httplib::Response& response) {
     SetJson(session.QualityJson(), response);
   });
+  // Edits: a frame's pose, nudges in one view, undo, the pose as a keyframe (review_edits.h).
+  server.Get(R"(/api/frame/([^/]+)/pose)", [this](const httplib::Request& request,
+                                                  httplib::Response& response) {
+    const StatusOr<int> frame = ParseFrameIndex(request.matches[1], session.sequence().num_frames);
+    if (!frame.ok()) return SetError(frame.status(), response);
+    Respond(session.PoseJson(*frame), response);
+  });
+  server.Post(R"(/api/frame/([^/]+)/nudge)",
+              [this](const httplib::Request& request, httplib::Response& response) {
+                const StatusOr<ReviewTarget> target =
+                    session.Resolve(request.matches[1], request.get_param_value("camera"));
+                if (!target.ok()) return SetError(target.status(), response);
+                const StatusOr<PoseNudge> nudge = ParseNudge(request);
+                if (!nudge.ok()) return SetError(nudge.status(), response);
+                Respond(session.Nudge(*target, *nudge), response);
+              });
+  server.Post(R"(/api/frame/([^/]+)/(undo|keyframe))", [this](const httplib::Request& request,
+                                                              httplib::Response& response) {
+    const StatusOr<int> frame = ParseFrameIndex(request.matches[1], session.sequence().num_frames);
+    if (!frame.ok()) return SetError(frame.status(), response);
+    Respond(request.matches[2] == "undo" ? session.Undo(*frame) : session.SetKeyframeJson(*frame),
+            response);
+  });
   server.Get("/api/trajectory", [this](const httplib::Request&, httplib::Response& response) {
     SetJson(session.TrajectoryJson(), response);
   });
@@ -111,7 +161,7 @@ void ReviewServer::Impl::AddRoutes() {
   });
 }
 
-ReviewServer::ReviewServer(const ReviewSession& session, const ReviewOptions& options)
+ReviewServer::ReviewServer(ReviewSession& session, const ReviewOptions& options)
     : impl_(std::make_unique<Impl>(session, options)) {
   BCOT_CHECK(options.Validate().ok());
   impl_->AddRoutes();

@@ -1,5 +1,8 @@
 #include "bcot/review/review_session.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -44,7 +47,60 @@ ordered_json TimelineJson(const QualityTimeline& timeline) {
 
 ReviewSession::ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> annotation,
                              const Mesh& mesh)
-    : sequence_(std::move(sequence)), annotation_(std::move(annotation)), caster_(mesh) {}
+    : sequence_(std::move(sequence)), annotation_(std::move(annotation)), caster_(mesh) {
+  if (annotation_) edits_ = std::make_unique<PoseEdits>(annotation_->rig_from_object);
+}
+
+StatusOr<std::string> ReviewSession::PoseJson(int frame) const {
+  BCOT_CHECK(frame >= 0 && frame < sequence_.num_frames);
+  if (!edits_) return Status::InvalidInput("no annotation to edit (bcot review --annotation)");
+  const Eigen::Isometry3d pose = edits_->Pose(frame);
+  ordered_json numbers = ordered_json::array();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) numbers.push_back(pose.linear()(r, c));
+  }
+  for (int k = 0; k < 3; ++k) numbers.push_back(pose.translation()[k]);
+  return ordered_json{
+      {"frame", frame}, {"edits", edits_->Depth(frame)}, {"rig_from_object", numbers}}
+      .dump();
+}
+
+StatusOr<std::string> ReviewSession::Nudge(const ReviewTarget& target, const PoseNudge& nudge) {
+  if (!edits_) return Status::InvalidInput("no annotation to edit (bcot review --annotation)");
+  BCOT_ASSIGN_OR_RETURN(const Eigen::Isometry3d nudged,
+                        NudgePose(edits_->Pose(target.frame), caster_.mesh().bbox_center(),
+                                  sequence_.rig[target.camera], nudge));
+  edits_->Push(target.frame, nudged);
+  return PoseJson(target.frame);
+}
+
+StatusOr<std::string> ReviewSession::Undo(int frame) {
+  if (!edits_) return Status::InvalidInput("no annotation to edit (bcot review --annotation)");
+  if (!edits_->Undo(frame)) {
+    return Status::InvalidInput(fmt::format("frame {} has no edit to undo", frame));
+  }
+  return PoseJson(frame);
+}
+
+StatusOr<std::string> ReviewSession::SetKeyframeJson(int frame) {
+  if (!edits_) return Status::InvalidInput("no annotation to edit (bcot review --annotation)");
+  const std::string path = sequence_.dir + "/keyframes.txt";
+  {
+    std::lock_guard<std::mutex> lock(keyframes_mutex_);
+    BCOT_RETURN_IF_ERROR(SetKeyframe(path, frame, edits_->Pose(frame), sequence_.num_frames));
+  }
+  int first = frame, last = frame;
+  if (annotation_->quality) {
+    const std::vector<int> bad = annotation_->quality->BadFrames();
+    const auto is_bad = [&](int f) { return std::binary_search(bad.begin(), bad.end(), f); };
+    while (first > 0 && is_bad(first - 1)) --first;
+    while (last + 1 < sequence_.num_frames && is_bad(last + 1)) ++last;
+  }
+  const std::string command =
+      fmt::format("bcot annotate {} --out {} --config {}/config.resolved.yaml --frames {}:{}",
+                  sequence_.dir, annotation_->dir, annotation_->dir, first, last);
+  return ordered_json{{"path", path}, {"frame", frame}, {"command", command}}.dump();
+}
 
 StatusOr<std::unique_ptr<ReviewSession>> ReviewSession::Load(const std::string& sequence_dir,
                                                              const std::string& annotation_dir) {
@@ -146,6 +202,11 @@ StatusOr<std::vector<unsigned char>> ReviewSession::ViewJpeg(const ReviewTarget&
     }
     DrawContour(caster_.ExtractContour(camera.camera, cam_from_object), cv::Scalar(0, 255, 0),
                 &image);
+    if (edits_->Depth(target.frame) > 0) {
+      DrawContour(
+          caster_.ExtractContour(camera.camera, camera.cam_from_rig * edits_->Pose(target.frame)),
+          cv::Scalar(0, 230, 255), &image);
+    }
   }
   std::vector<unsigned char> jpeg;
   if (!cv::imencode(".jpg", image, jpeg, {cv::IMWRITE_JPEG_QUALITY, jpeg_quality})) {

@@ -1,7 +1,8 @@
 // The page of `bcot review` in headless Chromium (Debian `chromium`), driven over the DevTools
 // protocol by tests/browser/review_page.py (Python's standard library only): on a tiny annotated
 // `bcot synth` sequence, clicking the timeline at a chosen frame shows that frame with every
-// view's image loaded, → steps on, and a listed bad frame (if any) is shown when clicked.
+// view's image loaded, → steps on, a listed bad frame (if any) is shown when clicked, and on an
+// annotation the trajectory, the mask and a nudge set as a keyframe work.
 // Skipped without Chromium or Python. Screenshots are kept in the test's temporary directory
 // while it runs; set BCOT_TEST_ARTIFACTS to a directory to keep them. CTest label: browser.
 #include <gmock/gmock.h>
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "bcot/core/file_util.h"
 #include "bcot/review/review_server.h"
 #include "bcot/review/review_session.h"
 #include "test_util.h"
@@ -53,6 +55,12 @@ class ReviewBrowserTest : public ::testing::Test {
                          &output);
     EXPECT_EQ(code, 0) << output;
     EXPECT_THAT(output, HasSubstr("ok: no console messages")) << output;
+    if (!annotation.empty()) {
+      EXPECT_THAT(output, HasSubstr("ok: nudged frame 0 and set it as keyframe 0")) << output;
+      const StatusOr<std::string> keyframes = ReadTextFile(dir.File("seq/keyframes.txt"));
+      ASSERT_TRUE(keyframes.ok()) << keyframes.status().message();
+      EXPECT_EQ(keyframes->substr(0, 2), "0 ");
+    }
   }
 };
 

@@ -8,7 +8,8 @@ Opens URL, waits until the page has shown frame 0 with every image loaded, click
 at FRAME, and checks that the page then shows FRAME (number, slider, every view's image loaded
 at the camera's size); then → moves to FRAME + 1 and, when the page lists bad frames, clicking
 the first one shows it; with an annotation, the trajectory charts hold their series, a click on
-the rotation chart shows frame 0 and the mask box loads the tinted images. Any console message or script exception is a failure (the page logs
+the rotation chart shows frame 0, the mask box loads the tinted images, and a nudge of frame 0
+set as its keyframe writes keyframes.txt. Any console message or script exception is a failure (the page logs
 nothing). Screenshots go to SCREENSHOT_DIR. Prints one line per check; exit 0 when all pass.
 """
 import base64
@@ -138,6 +139,17 @@ class Chromium:
         self._log.close()
 
 
+def click_element(browser, selector):
+    """Scrolls the element `selector` into view and clicks its centre."""
+    x, y = browser.evaluate(f"""(() => {{
+        const element = document.querySelector('{selector}');
+        element.scrollIntoView({{block: 'center'}});
+        const rect = element.getBoundingClientRect();
+        return [rect.left + rect.width / 2, rect.top + rect.height / 2];
+    }})()""")
+    browser.click(x, y)
+
+
 def expect_frame(browser, frame):
     """The page shows `frame` with every view's image loaded at its camera's size."""
     browser.wait_for(f"document.body.dataset.loadedFrame === '{frame}'", f'frame {frame}')
@@ -177,13 +189,7 @@ def run(binary, url, frame, shots):
             expect_frame(browser, frame + 1)
             bad = browser.evaluate('state.quality.available ? state.quality.bad_frames : []')
             if bad:
-                x, y = browser.evaluate(f"""(() => {{
-                    const button = document.querySelector('#bad-frames button[data-frame="{bad[0]}"]');
-                    button.scrollIntoView({{block: 'center'}});
-                    const rect = button.getBoundingClientRect();
-                    return [rect.left + rect.width / 2, rect.top + rect.height / 2];
-                }})()""")
-                browser.click(x, y)
+                click_element(browser, f'#bad-frames button[data-frame="{bad[0]}"]')
                 expect_frame(browser, bad[0])
             print(f'ok: bad frames listed: {bad}')
             if browser.evaluate('state.trajectory.available'):
@@ -201,19 +207,21 @@ def run(binary, url, frame, shots):
                 browser.click(x, y)
                 expect_frame(browser, 0)
                 print('ok: trajectory charts drawn, a click on them shows the frame')
-                x, y = browser.evaluate("""(() => {
-                    const box = document.getElementById('mask');
-                    box.scrollIntoView({block: 'center'});
-                    const rect = box.getBoundingClientRect();
-                    return [rect.left + rect.width / 2, rect.top + rect.height / 2];
-                })()""")
-                browser.click(x, y)
+                click_element(browser, '#mask')
                 browser.wait_for("[...document.querySelectorAll('#views img')].every("
                                  "(img) => img.getAttribute('src').endsWith('?mask=1'))",
                                  'the masked images')
                 expect_frame(browser, 0)
                 browser.screenshot(os.path.join(shots, 'review_mask.png'))
                 print('ok: the mask box shows the tinted silhouettes')
+
+                click_element(browser, '[data-nudge="dx:1"]')
+                browser.wait_for("document.body.dataset.edits === '1'", 'the nudge')
+                expect_frame(browser, 0)
+                click_element(browser, '#keyframe')
+                browser.wait_for("document.body.dataset.keyframe === '0'", 'the keyframe')
+                browser.screenshot(os.path.join(shots, 'review_edit.png'))
+                print('ok: nudged frame 0 and set it as keyframe 0')
             browser.screenshot(os.path.join(shots, 'review_end.png'))
             problems = browser.problems()
             assert not problems, f'console messages or exceptions: {problems}'

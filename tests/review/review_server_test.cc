@@ -11,6 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bcot/core/file_util.h"
+#include "bcot/core/keyframes.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/se3.h"
 #include "test_util.h"
@@ -26,7 +27,7 @@ constexpr int kFrames = 4;
 // A ReviewServer on an ephemeral loopback port, answering on its own thread.
 class RunningServer {
  public:
-  explicit RunningServer(const ReviewSession& session) {
+  explicit RunningServer(ReviewSession& session) {
     ReviewOptions options;
     options.port = 0;
     server_ = std::make_unique<ReviewServer>(session, options);
@@ -200,6 +201,68 @@ TEST_F(ReviewServerTest, MaskTintsTheSilhouette) {
   EXPECT_GT(cv::countNonZero(channels[1] > 40), 200) << "no green tint";
   cv::split(plain - masked, channels);
   EXPECT_GT(cv::countNonZero(channels[2] > 20), 100) << "red not darkened";
+}
+
+// Nudges change the frame's pose (and its image: a yellow contour), undo restores it, and a
+// keyframe writes the pose to the sequence's keyframes.txt and names the command to re-annotate.
+TEST_F(ReviewServerTest, NudgeUndoAndKeyframe) {
+  test::TempDir work;
+  const std::string seq = test::CopyTree(dir_->File("seq"), work.File("seq"));
+  StatusOr<std::unique_ptr<ReviewSession>> session = ReviewSession::Load(seq, dir_->File("ann"));
+  ASSERT_TRUE(session.ok()) << session.status().message();
+  RunningServer running(**session);
+  httplib::Client client = running.Client();
+  const json original = GetJson(client, "/api/frame/2/pose");
+  EXPECT_EQ(original["edits"], 0);
+  const cv::Mat before = GetImage(client, "/api/frame/2/view/cam0.jpg");
+
+  const httplib::Result nudged = client.Post("/api/frame/2/nudge?camera=cam0&dx=4&rz=5", "", "");
+  ASSERT_TRUE(nudged);
+  ASSERT_EQ(nudged->status, 200) << nudged->body;
+  const json moved = json::parse(nudged->body);
+  EXPECT_EQ(moved["edits"], 1);
+  EXPECT_NE(moved["rig_from_object"], original["rig_from_object"]);
+  EXPECT_EQ(GetJson(client, "/api/frame/2/pose"), moved);
+  EXPECT_EQ(GetJson(client, "/api/frame/1/pose")["edits"], 0);
+  const cv::Mat after = GetImage(client, "/api/frame/2/view/cam0.jpg");
+  cv::Mat channels[3];
+  cv::split(after - before, channels);
+  EXPECT_GT(cv::countNonZero(channels[2] > 80), 10) << "no yellow contour of the edit";
+
+  const httplib::Result keyframe = client.Post("/api/frame/2/keyframe", "", "");
+  ASSERT_TRUE(keyframe);
+  ASSERT_EQ(keyframe->status, 200) << keyframe->body;
+  const json written = json::parse(keyframe->body);
+  EXPECT_EQ(written["path"], seq + "/keyframes.txt");
+  EXPECT_THAT(written["command"].get<std::string>(),
+              HasSubstr("--config " + dir_->File("ann") + "/config.resolved.yaml --frames "));
+  const StatusOr<KeyframePoses> keyframes = ReadKeyframeFile(seq + "/keyframes.txt", kFrames);
+  ASSERT_TRUE(keyframes.ok()) << keyframes.status().message();
+  ASSERT_EQ(keyframes->count(2), 1u);
+  EXPECT_NEAR(keyframes->at(2).translation().x(), moved["rig_from_object"][9].get<double>(), 1e-9);
+
+  const httplib::Result undone = client.Post("/api/frame/2/undo", "", "");
+  ASSERT_TRUE(undone && undone->status == 200);
+  EXPECT_EQ(json::parse(undone->body), original);
+  const httplib::Result nothing = client.Post("/api/frame/2/undo", "", "");
+  ASSERT_TRUE(nothing);
+  EXPECT_EQ(nothing->status, 400);
+  EXPECT_THAT(nothing->body, HasSubstr("frame 2 has no edit to undo"));
+
+  for (const char* path :
+       {"/api/frame/2/nudge?camera=cam9&dx=1", "/api/frame/2/nudge?camera=cam0&dx=x",
+        "/api/frame/2/nudge?camera=cam0&dy=1e9", "/api/frame/9/nudge?camera=cam0"}) {
+    const httplib::Result bad = client.Post(path, "", "");
+    ASSERT_TRUE(bad) << path;
+    EXPECT_NE(bad->status, 200) << path;
+  }
+  RunningServer bare(*bare_);
+  httplib::Client bare_client = bare.Client();
+  const httplib::Result no_annotation =
+      bare_client.Post("/api/frame/0/nudge?camera=cam0&dx=1", "", "");
+  ASSERT_TRUE(no_annotation);
+  EXPECT_EQ(no_annotation->status, 400);
+  EXPECT_THAT(no_annotation->body, HasSubstr("no annotation to edit"));
 }
 
 // Frames and cameras come from the sequence; anything else, path-like or not, is an error

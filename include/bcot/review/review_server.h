@@ -19,7 +19,7 @@ namespace bcot {
 class ReviewServer {
  public:
   // `options` must be valid (CHECKed).
-  ReviewServer(const ReviewSession& session, const ReviewOptions& options);
+  ReviewServer(ReviewSession& session, const ReviewOptions& options);
   ~ReviewServer();
   ReviewServer(const ReviewServer&) = delete;
   ReviewServer& operator=(const ReviewServer&) = delete;

@@ -1,12 +1,15 @@
 // What `bcot review` serves: one sequence, optionally one annotation of it, and the Embree caster
-// of its object. Loaded and validated once; afterwards every method is const and thread-safe
-// (the HTTP server answers requests from several threads).
+// of its object. Loaded and validated once; afterwards every method is thread-safe (the HTTP
+// server answers requests from several threads): the read-only ones are const, the edits of
+// the annotation's poses (review_edits.h) are kept in memory behind their own locks and reach
+// the disk only as keyframes.txt.
 //
 // The JSON documents are described in docs/review.md. Images are always the sequence's own
 // files, addressed by a validated ReviewTarget, never by a path from a request.
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +19,7 @@
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
 #include "bcot/review/review_annotation.h"
+#include "bcot/review/review_edits.h"
 #include "bcot/review/review_request.h"
 
 namespace bcot {
@@ -45,8 +49,23 @@ class ReviewSession {
   // /api/frame/N/view/CAM.jpg[?mask=1]: the frame image of the target's camera, with the
   // silhouette contour of the annotated pose drawn in green when there is an annotation, and
   // with `mask` its silhouette tinted green at 35 % (where the model covers the image).
+  // An edited frame shows the edited pose's contour in yellow over the annotated one.
   StatusOr<std::vector<unsigned char>> ViewJpeg(const ReviewTarget& target, int jpeg_quality,
                                                 bool mask = false) const;
+  // /api/frame/N/pose: {"frame", "edits" (on the frame's undo stack), "rig_from_object" (12
+  // numbers, the pose-file order)}; kInvalidInput without an annotation.
+  StatusOr<std::string> PoseJson(int frame) const;
+  // POST /api/frame/N/nudge: moves the frame's pose in the target camera (NudgePose); its pose
+  // JSON.
+  StatusOr<std::string> Nudge(const ReviewTarget& target, const PoseNudge& nudge);
+  // POST /api/frame/N/undo: drops the frame's last edit; its pose JSON (kInvalidInput
+  // when there is none).
+  StatusOr<std::string> Undo(int frame);
+  // POST /api/frame/N/keyframe: the frame's pose (edited or not) as its keyframe in
+  // <sequence>/keyframes.txt (SetKeyframe); {"path", "frame", "command"}: the `bcot annotate
+  // --frames A:B` that re-annotates the bad frames around it (A:B the run of bad frames of
+  // quality.json that holds or touches N, else N:N).
+  StatusOr<std::string> SetKeyframeJson(int frame);
   // /api/trajectory: per frame of the annotation, the rotation (deg) of the object from its
   // frame-0 orientation and the position of its bounding-box centre in the rig (mm), and the
   // sequence's keyframes; {"available": false} without an annotation.
@@ -58,6 +77,8 @@ class ReviewSession {
   Sequence sequence_;
   std::optional<ReviewAnnotation> annotation_;
   RayCaster caster_;
+  std::unique_ptr<PoseEdits> edits_;  // with an annotation
+  std::mutex keyframes_mutex_;        // one keyframes.txt writer at a time
 };
 
 }  // namespace bcot

@@ -121,6 +121,7 @@ function showFrame(frame) {
   }
   moveCursor();
   loadDiagnostics(frame);
+  loadPose(frame);
   // The address names the frame shown (#frame=N), so it can be shared or reopened there.
   history.replaceState(null, '', `#frame=${frame}`);
 }
@@ -256,6 +257,63 @@ function moveCursor() {
     cursor.setAttribute('x1', px);
     cursor.setAttribute('x2', px);
   }
+}
+
+// --- editing --------------------------------------------------------------------------------
+
+async function post(url) {
+  const response = await fetch(url, {method: 'POST'});
+  const text = await response.text();
+  if (!response.ok) throw new Error(text.trim());
+  return JSON.parse(text);
+}
+
+function describeEdit(pose) {
+  document.body.dataset.edits = String(pose.edits);
+  $('edit-status').textContent = pose.edits ?
+      `Frame ${pose.frame}: ${pose.edits} edit(s), contour in yellow. Set it as a keyframe to ` +
+      'keep it.' : `Frame ${pose.frame}: the annotated pose (green).`;
+}
+
+async function edit(action) {
+  try {
+    describeEdit(await action());
+    showFrame(state.frame);
+  } catch (error) {
+    $('edit-status').textContent = String(error.message);
+  }
+}
+
+function bindEditing() {
+  const select = $('edit-camera');
+  for (const camera of state.sequence.cameras) {
+    select.appendChild(el('option', {value: camera.name}, camera.name));
+  }
+  for (const button of document.querySelectorAll('[data-nudge]')) {
+    button.addEventListener('click', () => {
+      const [key, sign] = button.dataset.nudge.split(':');
+      const amount = Number(sign) * Number($('edit-step').value);
+      edit(() => post(`api/frame/${state.frame}/nudge?camera=` +
+                      `${encodeURIComponent(select.value)}&${key}=${amount}`));
+    });
+  }
+  $('undo').addEventListener('click', () => edit(() => post(`api/frame/${state.frame}/undo`)));
+  $('keyframe').addEventListener('click', async () => {
+    try {
+      const written = await post(`api/frame/${state.frame}/keyframe`);
+      document.body.dataset.keyframe = String(written.frame);
+      $('edit-status').textContent = `Keyframe ${written.frame} written to ${written.path}. ` +
+          `Re-annotate around it with: ${written.command}`;
+    } catch (error) {
+      $('edit-status').textContent = String(error.message);
+    }
+  });
+}
+
+async function loadPose(frame) {
+  if (!state.sequence.contour) return;
+  const pose = await getJson(`api/frame/${frame}/pose`);
+  if (frame === state.frame) describeEdit(pose);
 }
 
 // --- trajectory -------------------------------------------------------------------------------
@@ -413,6 +471,8 @@ async function start() {
   drawTimeline();
   drawTrajectory();
   $('mask-label').hidden = !sequence.contour;
+  $('edit-section').hidden = !sequence.contour;
+  if (sequence.contour) bindEditing();
   showFrame(frameFromAddress());
   document.body.dataset.ready = 'yes';
 }
