@@ -222,6 +222,34 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence, const Ra
   return AnnotateFrames(sequence, caster, options, span, progress, observer);
 }
 
+StatusOr<RefinedFrame> RefineFrame(const Sequence& sequence, const RayCaster& caster,
+                                   const AnnotateOptions& options, int frame,
+                                   const Eigen::Isometry3d& rig_from_object) {
+  BCOT_RETURN_IF_ERROR(options.Validate());
+  if (frame < 0 || frame >= sequence.num_frames) {
+    return Status::InvalidInput(
+        fmt::format("frame {}: the sequence has frames 0..{}", frame, sequence.num_frames - 1));
+  }
+  std::vector<int> rig_indices;
+  BCOT_ASSIGN_OR_RETURN(std::vector<TrackedView> views,
+                        SelectViews(sequence.rig, options.views, &rig_indices));
+  std::vector<cv::Mat3b> images;
+  for (size_t v = 0; v < rig_indices.size(); ++v) {
+    BCOT_ASSIGN_OR_RETURN(
+        cv::Mat3b image,
+        ReadCameraImage(sequence.image_paths[rig_indices[v]][frame], views[v].camera));
+    images.push_back(image);
+  }
+  BCOT_ASSIGN_OR_RETURN(std::unique_ptr<MultiViewTracker> tracker,
+                        MultiViewTracker::Create(caster, std::move(views), options.tracker));
+  const Eigen::Isometry3d objcentre_from_template = caster.mesh().objcentre_from_template();
+  Eigen::Isometry3d rig_from_objcentre = rig_from_object * objcentre_from_template.inverse();
+  RefinedFrame refined;
+  BCOT_ASSIGN_OR_RETURN(refined.summary, tracker->Initialize(images, &rig_from_objcentre));
+  refined.rig_from_object = rig_from_objcentre * objcentre_from_template;
+  return refined;
+}
+
 StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayCaster& caster,
                                             const AnnotateOptions& options, const FrameSpan& span,
                                             const AnnotateProgress& progress,

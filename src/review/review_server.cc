@@ -133,13 +133,17 @@ void ReviewServer::Impl::AddRoutes() {
                 if (!nudge.ok()) return SetError(nudge.status(), response);
                 Respond(session.Nudge(*target, *nudge), response);
               });
-  server.Post(R"(/api/frame/([^/]+)/(undo|keyframe))", [this](const httplib::Request& request,
-                                                              httplib::Response& response) {
-    const StatusOr<int> frame = ParseFrameIndex(request.matches[1], session.sequence().num_frames);
-    if (!frame.ok()) return SetError(frame.status(), response);
-    Respond(request.matches[2] == "undo" ? session.Undo(*frame) : session.SetKeyframeJson(*frame),
-            response);
-  });
+  server.Post(R"(/api/frame/([^/]+)/(undo|keyframe|refine))",
+              [this](const httplib::Request& request, httplib::Response& response) {
+                const StatusOr<int> frame =
+                    ParseFrameIndex(request.matches[1], session.sequence().num_frames);
+                if (!frame.ok()) return SetError(frame.status(), response);
+                const std::string action = request.matches[2];
+                Respond(action == "undo"       ? session.Undo(*frame)
+                        : action == "keyframe" ? session.SetKeyframeJson(*frame)
+                                               : session.Refine(*frame),
+                        response);
+              });
   server.Get("/api/trajectory", [this](const httplib::Request&, httplib::Response& response) {
     SetJson(session.TrajectoryJson(), response);
   });

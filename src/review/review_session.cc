@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "bcot/annotate/annotator.h"
 #include "bcot/core/image_io.h"
 #include "bcot/core/se3.h"
 #include "bcot/render/contour_drawing.h"
@@ -48,7 +49,31 @@ ordered_json TimelineJson(const QualityTimeline& timeline) {
 ReviewSession::ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> annotation,
                              const Mesh& mesh)
     : sequence_(std::move(sequence)), annotation_(std::move(annotation)), caster_(mesh) {
-  if (annotation_) edits_ = std::make_unique<PoseEdits>(annotation_->rig_from_object);
+  if (annotation_) {
+    edits_ = std::make_unique<PoseEdits>(annotation_->rig_from_object);
+    annotate_options_ = ReadAnnotateOptions(annotation_->dir + "/config.resolved.yaml", {});
+  }
+}
+
+StatusOr<std::string> ReviewSession::Refine(int frame) {
+  if (!edits_) return Status::InvalidInput("no annotation to edit (bcot review --annotation)");
+  if (!annotate_options_.ok()) {
+    return Status::InvalidInput("refine needs the annotation's options: " +
+                                annotate_options_.status().message());
+  }
+  BCOT_ASSIGN_OR_RETURN(
+      const RefinedFrame refined,
+      RefineFrame(sequence_, caster_, *annotate_options_, frame, edits_->Pose(frame)));
+  if (!refined.summary.usable()) {
+    return Status::InvalidInput(fmt::format(
+        "frame {}: the solve failed ({}); the pose is unchanged", frame, refined.summary.message));
+  }
+  edits_->Push(frame, refined.rig_from_object);
+  BCOT_ASSIGN_OR_RETURN(const std::string pose, PoseJson(frame));
+  ordered_json json = ordered_json::parse(pose);
+  json["termination"] = FrameTerminationName(refined.summary.termination);
+  json["rounds"] = refined.summary.rounds;
+  return json.dump();
 }
 
 StatusOr<std::string> ReviewSession::PoseJson(int frame) const {

@@ -203,9 +203,10 @@ TEST_F(ReviewServerTest, MaskTintsTheSilhouette) {
   EXPECT_GT(cv::countNonZero(channels[2] > 20), 100) << "red not darkened";
 }
 
-// Nudges change the frame's pose (and its image: a yellow contour), undo restores it, and a
-// keyframe writes the pose to the sequence's keyframes.txt and names the command to re-annotate.
-TEST_F(ReviewServerTest, NudgeUndoAndKeyframe) {
+// Nudges change the frame's pose (and its image: a yellow contour), refine solves it back, undo
+// restores it, and a keyframe writes the pose to the sequence's keyframes.txt and names the
+// command to re-annotate.
+TEST_F(ReviewServerTest, NudgeRefineUndoAndKeyframe) {
   test::TempDir work;
   const std::string seq = test::CopyTree(dir_->File("seq"), work.File("seq"));
   StatusOr<std::unique_ptr<ReviewSession>> session = ReviewSession::Load(seq, dir_->File("ann"));
@@ -240,6 +241,22 @@ TEST_F(ReviewServerTest, NudgeUndoAndKeyframe) {
   ASSERT_TRUE(keyframes.ok()) << keyframes.status().message();
   ASSERT_EQ(keyframes->count(2), 1u);
   EXPECT_NEAR(keyframes->at(2).translation().x(), moved["rig_from_object"][9].get<double>(), 1e-9);
+
+  // Refine solves the frame from the nudged pose: it returns close to the annotated pose.
+  const httplib::Result refined = client.Post("/api/frame/2/refine", "", "");
+  ASSERT_TRUE(refined);
+  ASSERT_EQ(refined->status, 200) << refined->body;
+  const json solved = json::parse(refined->body);
+  EXPECT_EQ(solved["edits"], 2);
+  EXPECT_TRUE(solved.contains("termination"));
+  const auto translation = [](const json& pose) {
+    return Eigen::Vector3d(pose["rig_from_object"][9], pose["rig_from_object"][10],
+                           pose["rig_from_object"][11]);
+  };
+  const double nudged_mm = (translation(moved) - translation(original)).norm();
+  EXPECT_LT((translation(solved) - translation(original)).norm(), nudged_mm / 3.0);
+  const httplib::Result back = client.Post("/api/frame/2/undo", "", "");
+  ASSERT_TRUE(back && back->status == 200);
 
   const httplib::Result undone = client.Post("/api/frame/2/undo", "", "");
   ASSERT_TRUE(undone && undone->status == 200);

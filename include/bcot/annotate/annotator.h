@@ -93,6 +93,18 @@ struct FrameSpan {
   std::vector<Eigen::Isometry3d> existing_rig_from_object;
 };
 
+// One frame solved as `bcot annotate` solves an anchor (MultiViewTracker::Initialize: colour
+// models learned at the pose, then the joint solve of the views options.views selects), from
+// `rig_from_object` (O_t): `bcot review`'s "refine". Errors: as AnnotateSequence's for the
+// views and images; kInvalidInput for a frame outside the sequence.
+struct RefinedFrame {
+  Eigen::Isometry3d rig_from_object = Eigen::Isometry3d::Identity();
+  FrameSummary summary;
+};
+StatusOr<RefinedFrame> RefineFrame(const Sequence& sequence, const RayCaster& caster,
+                                   const AnnotateOptions& options, int frame,
+                                   const Eigen::Isometry3d& rig_from_object);
+
 // Solves frames [span.first, span.end) (the returned vectors hold those frames only; observer
 // and progress count them). Anchors: init_pose.txt when the span starts at 0, the keyframes in
 // the span, and the existing pose before it (see FrameSpan). Errors as AnnotateSequence's, and

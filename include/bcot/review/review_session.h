@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "bcot/annotate/annotate_options.h"
 #include "bcot/core/sequence.h"
 #include "bcot/core/status.h"
 #include "bcot/render/mesh.h"
@@ -58,6 +59,10 @@ class ReviewSession {
   // POST /api/frame/N/nudge: moves the frame's pose in the target camera (NudgePose); its pose
   // JSON.
   StatusOr<std::string> Nudge(const ReviewTarget& target, const PoseNudge& nudge);
+  // POST /api/frame/N/refine: the frame solved as an anchor of `bcot annotate` from its current
+  // pose (RefineFrame) with the annotation's options (config.resolved.yaml), pushed as an edit;
+  // its pose JSON plus "termination" and "rounds" of the solve.
+  StatusOr<std::string> Refine(int frame);
   // POST /api/frame/N/undo: drops the frame's last edit; its pose JSON (kInvalidInput
   // when there is none).
   StatusOr<std::string> Undo(int frame);
@@ -78,7 +83,9 @@ class ReviewSession {
   std::optional<ReviewAnnotation> annotation_;
   RayCaster caster_;
   std::unique_ptr<PoseEdits> edits_;  // with an annotation
-  std::mutex keyframes_mutex_;        // one keyframes.txt writer at a time
+  // The annotation's options (config.resolved.yaml), or why they could not be read.
+  StatusOr<AnnotateOptions> annotate_options_ = Status::NotFound("no annotation");
+  std::mutex keyframes_mutex_;  // one keyframes.txt writer at a time
 };
 
 }  // namespace bcot

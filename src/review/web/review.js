@@ -298,6 +298,10 @@ function bindEditing() {
     });
   }
   $('undo').addEventListener('click', () => edit(() => post(`api/frame/${state.frame}/undo`)));
+  $('refine').addEventListener('click', () => {
+    $('edit-status').textContent = `Refining frame ${state.frame} …`;
+    edit(() => post(`api/frame/${state.frame}/refine`));
+  });
   $('keyframe').addEventListener('click', async () => {
     try {
       const written = await post(`api/frame/${state.frame}/keyframe`);
