@@ -1,7 +1,8 @@
 // bcot init SEQ [--frame N] [--click CAM:X,Y]... [--distance-mm D] [--out FILE] [--overwrite]
 //               [--candidates K] [--config FILE] [--set key=value]...
-// Finds the object's pose at one frame from clicks on its centre (bcot/annotate/initializer.h)
-// and writes it as a pose file (default SEQ/init_pose.txt) with one overlay PNG per view.
+// Finds the object's pose at one frame from clicks on its centre, or from its motion without
+// clicks (bcot/annotate/initializer.h), and writes it as a pose file (default
+// SEQ/init_pose.txt) with one overlay PNG per view.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -80,8 +81,8 @@ void AddInitCommand(CLI::App& app, int* exit_code) {
   auto flags = std::make_shared<InitFlags>();
   CLI::App* command =
       app.add_subcommand("init",
-                         "Find the object's pose at one frame from clicks on its centre; writes "
-                         "init_pose.txt");
+                         "Find the object's pose at one frame from clicks on its centre (or from "
+                         "its motion); writes init_pose.txt");
   command->add_option("sequence", flags->sequence_dir, "Sequence directory (holds rig.yaml)")
       ->required();
   command->add_option("--frame", flags->frame, "Frame to initialise")->capture_default_str();
