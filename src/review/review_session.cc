@@ -44,6 +44,21 @@ ordered_json TimelineJson(const QualityTimeline& timeline) {
   return json;
 }
 
+// The pose JSON of /api/frame/N/pose (review_session.h).
+ordered_json PoseObject(const PoseEdits& edits, int frame) {
+  const Eigen::Isometry3d pose = edits.Pose(frame);
+  ordered_json numbers = ordered_json::array();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) numbers.push_back(pose.linear()(r, c));
+  }
+  for (int k = 0; k < 3; ++k) numbers.push_back(pose.translation()[k]);
+  return {{"frame", frame}, {"edits", edits.Depth(frame)}, {"rig_from_object", numbers}};
+}
+
+Status NoAnnotationToEdit() {
+  return Status::InvalidInput("no annotation to edit (bcot review --annotation)");
+}
+
 }  // namespace
 
 ReviewSession::ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> annotation,
@@ -56,7 +71,7 @@ ReviewSession::ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> 
 }
 
 StatusOr<std::string> ReviewSession::Refine(int frame) {
-  if (!edits_) return Status::InvalidInput("no annotation to edit (bcot review --annotation)");
+  if (!edits_) return NoAnnotationToEdit();
   if (!annotate_options_.ok()) {
     return Status::InvalidInput("refine needs the annotation's options: " +
                                 annotate_options_.status().message());
@@ -69,8 +84,7 @@ StatusOr<std::string> ReviewSession::Refine(int frame) {
         "frame {}: the solve failed ({}); the pose is unchanged", frame, refined.summary.message));
   }
   edits_->Push(frame, refined.rig_from_object);
-  BCOT_ASSIGN_OR_RETURN(const std::string pose, PoseJson(frame));
-  ordered_json json = ordered_json::parse(pose);
+  ordered_json json = PoseObject(*edits_, frame);
   json["termination"] = FrameTerminationName(refined.summary.termination);
   json["rounds"] = refined.summary.rounds;
   return json.dump();
@@ -78,20 +92,12 @@ StatusOr<std::string> ReviewSession::Refine(int frame) {
 
 StatusOr<std::string> ReviewSession::PoseJson(int frame) const {
   BCOT_CHECK(frame >= 0 && frame < sequence_.num_frames);
-  if (!edits_) return Status::InvalidInput("no annotation to edit (bcot review --annotation)");
-  const Eigen::Isometry3d pose = edits_->Pose(frame);
-  ordered_json numbers = ordered_json::array();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) numbers.push_back(pose.linear()(r, c));
-  }
-  for (int k = 0; k < 3; ++k) numbers.push_back(pose.translation()[k]);
-  return ordered_json{
-      {"frame", frame}, {"edits", edits_->Depth(frame)}, {"rig_from_object", numbers}}
-      .dump();
+  if (!edits_) return NoAnnotationToEdit();
+  return PoseObject(*edits_, frame).dump();
 }
 
 StatusOr<std::string> ReviewSession::Nudge(const ReviewTarget& target, const PoseNudge& nudge) {
-  if (!edits_) return Status::InvalidInput("no annotation to edit (bcot review --annotation)");
+  if (!edits_) return NoAnnotationToEdit();
   BCOT_ASSIGN_OR_RETURN(const Eigen::Isometry3d nudged,
                         NudgePose(edits_->Pose(target.frame), caster_.mesh().bbox_center(),
                                   sequence_.rig[target.camera], nudge));
@@ -100,7 +106,7 @@ StatusOr<std::string> ReviewSession::Nudge(const ReviewTarget& target, const Pos
 }
 
 StatusOr<std::string> ReviewSession::Undo(int frame) {
-  if (!edits_) return Status::InvalidInput("no annotation to edit (bcot review --annotation)");
+  if (!edits_) return NoAnnotationToEdit();
   if (!edits_->Undo(frame)) {
     return Status::InvalidInput(fmt::format("frame {} has no edit to undo", frame));
   }
@@ -108,7 +114,7 @@ StatusOr<std::string> ReviewSession::Undo(int frame) {
 }
 
 StatusOr<std::string> ReviewSession::SetKeyframeJson(int frame) {
-  if (!edits_) return Status::InvalidInput("no annotation to edit (bcot review --annotation)");
+  if (!edits_) return NoAnnotationToEdit();
   const std::string path = sequence_.dir + "/keyframes.txt";
   {
     std::lock_guard<std::mutex> lock(keyframes_mutex_);

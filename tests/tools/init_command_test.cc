@@ -149,16 +149,24 @@ TEST_F(InitCommandTest, BadClicksAreOneLineErrorsNamingTheFlag) {
   }
 }
 
+// `bcot synth` of the demo scene (one distractor) with `settings` into work/seq, without
+// init_pose.txt; returns the sequence directory.
+std::string SynthesizeWithoutInitPose(const test::TempDir& work, const std::string& settings) {
+  const std::string seq = work.File("seq");
+  test::Synthesize(seq,
+                   settings + " --set distractors.count=1 --set render.object_samples_per_axis=2");
+  std::filesystem::remove(seq + "/init_pose.txt");
+  return seq;
+}
+
 // Without --click the object is found by its motion: 12 frames in which it moves ~15 mm and 6°
 // per frame (more than its size over the sequence) in front of a static scene.
 TEST(InitWithoutClicksTest, FindsTheMovingObjectAndItsPose) {
   test::TempDir work;
-  const std::string seq = work.File("seq");
-  test::Synthesize(seq,
-                   "--set cameras.width=320 --set cameras.height=256 --set motion.num_frames=12"
-                   " --set motion.translation_mm_per_frame=15 --set motion.rotation_deg_per_frame=6"
-                   " --set distractors.count=1 --set render.object_samples_per_axis=2");
-  std::filesystem::remove(seq + "/init_pose.txt");
+  const std::string seq = SynthesizeWithoutInitPose(
+      work,
+      "--set cameras.width=320 --set cameras.height=256 --set motion.num_frames=12"
+      " --set motion.translation_mm_per_frame=15 --set motion.rotation_deg_per_frame=6");
   std::string output;
   ASSERT_EQ(test::RunCommand(test::BcotBinary() + " init " + seq, &output), 0) << output;
   EXPECT_THAT(output, HasSubstr("moving object: cam0 region"));
@@ -175,12 +183,10 @@ TEST(InitWithoutClicksTest, FindsTheMovingObjectAndItsPose) {
 // An object that never moves is not found: a one-line error that asks for --click.
 TEST(InitWithoutClicksTest, AStillObjectAsksForAClick) {
   test::TempDir work;
-  const std::string seq = work.File("seq");
-  test::Synthesize(seq,
-                   "--set cameras.width=160 --set cameras.height=128 --set motion.num_frames=4"
-                   " --set motion.translation_mm_per_frame=0 --set motion.rotation_deg_per_frame=0"
-                   " --set distractors.count=1 --set render.object_samples_per_axis=2");
-  std::filesystem::remove(seq + "/init_pose.txt");
+  const std::string seq = SynthesizeWithoutInitPose(
+      work,
+      "--set cameras.width=160 --set cameras.height=128 --set motion.num_frames=4"
+      " --set motion.translation_mm_per_frame=0 --set motion.rotation_deg_per_frame=0");
   std::string output;
   EXPECT_EQ(test::RunCommand(test::BcotBinary() + " init " + seq, &output), 1) << output;
   EXPECT_EQ(test::CountLines(output), 1) << output;
