@@ -25,6 +25,7 @@ packages=(
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libfmt-dev libspdlog-dev libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcpp-httplib-dev   # the local web server of `bcot review`
+  libjs-dygraphs       # its charts (embedded into the binary at build time)
   clang libclang-rt-14-dev   # libFuzzer harnesses of the parsers (scripts/fuzz.sh, ctest -L fuzz)
   chromium   # headless renders of the HTML reports in the tests labelled `browser`
 )

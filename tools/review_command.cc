@@ -1,13 +1,16 @@
 // bcot review <sequence dir> [--annotation DIR] [--frame N] [--host ADDRESS] [--port P]
+//             [--config FILE] [--set key=value]...
 // Serves a local web page to inspect a sequence and its annotation: every view side by side with
-// the annotated contour, the reprojection-error timeline, bad frames and solver diagnostics
-// (docs/review.md). Runs until interrupted (Ctrl-C).
+// the annotated contour, the reprojection-error timeline, bad frames and solver diagnostics;
+// edits, re-annotation of frames and the initial pose from clicks (docs/review.md). Runs until
+// interrupted (Ctrl-C).
 #include <fmt/format.h>
 
 #include <cstdio>
 #include <memory>
 #include <string>
 
+#include "bcot/annotate/initializer.h"
 #include "bcot/review/review_options.h"
 #include "bcot/review/review_server.h"
 #include "bcot/review/review_session.h"
@@ -17,6 +20,7 @@ namespace bcot::tools {
 namespace {
 
 struct ReviewFlags {
+  ConfigFlags config;
   std::string sequence_dir;
   std::string annotation_dir;
   int frame = 0;
@@ -30,8 +34,14 @@ int RunReview(const ReviewFlags& flags) {
     PrintError("review", valid.message());
     return 2;
   }
+  const StatusOr<InitOptions> init_options =
+      ReadInitOptions(flags.config.config_path, flags.config.overrides);
+  if (!init_options.ok()) {
+    PrintError("review", init_options.status().message());
+    return init_options.status().ExitCode();
+  }
   const StatusOr<std::unique_ptr<ReviewSession>> session =
-      ReviewSession::Load(flags.sequence_dir, flags.annotation_dir);
+      ReviewSession::Load(flags.sequence_dir, flags.annotation_dir, *init_options);
   if (!session.ok()) {
     PrintError("review", session.status().message());
     return session.status().ExitCode();
@@ -86,6 +96,8 @@ void AddReviewCommand(CLI::App& app, int* exit_code) {
   command->add_option("--port", flags->options.port, "TCP port (0: any free port)")
       ->capture_default_str();
   command->add_flag("--quiet", flags->quiet, "Only the address on stdout (and errors on stderr)");
+  // The page's initial-pose search is bcot init's (an annotate config is a valid one).
+  AddConfigFlags(command, &flags->config, InitOptionSchema());
   command->callback([flags, exit_code] { *exit_code = RunReview(*flags); });
 }
 

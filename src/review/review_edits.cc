@@ -64,6 +64,13 @@ bool PoseEdits::Undo(int frame) {
   return true;
 }
 
+void PoseEdits::Rebase(std::vector<Eigen::Isometry3d> rig_from_object, int first, int last) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  BCOT_CHECK(rig_from_object.size() == original_.size());
+  original_ = std::move(rig_from_object);
+  edits_.erase(edits_.lower_bound(first), edits_.upper_bound(last));
+}
+
 Status SetKeyframe(const std::string& path, int frame, const Eigen::Isometry3d& rig_from_object,
                    int num_frames) {
   if (frame < 0 || frame >= num_frames) {

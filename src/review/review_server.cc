@@ -61,6 +61,28 @@ StatusOr<PoseNudge> ParseNudge(const httplib::Request& request) {
   return nudge;
 }
 
+// An integer of at most 6 digits (a candidate index).
+bool ParseCount(const std::string& text, int* value) {
+  int64_t parsed = 0;
+  if (!ParseInt64(text, &parsed) || parsed < -1 || parsed > 999999) return false;
+  *value = static_cast<int>(parsed);
+  return true;
+}
+
+// The initial-pose search of a request: frame (default 0) and click=CAM:X,Y (repeated).
+StatusOr<InitRequest> ParseInitRequest(const httplib::Request& request, int num_frames) {
+  InitRequest init;
+  if (request.has_param("frame")) {
+    BCOT_ASSIGN_OR_RETURN(init.frame,
+                          ParseFrameIndex(request.get_param_value("frame"), num_frames));
+  }
+  for (size_t k = 0; k < request.get_param_value_count("click"); ++k) {
+    BCOT_ASSIGN_OR_RETURN(init.clicks.emplace_back(),
+                          ParseImageClick(request.get_param_value("click", k)));
+  }
+  return init;
+}
+
 // Serves the embedded asset `name`, or 404.
 void ServeAsset(const std::string& name, httplib::Response& response) {
   const ReviewAsset* asset = FindReviewAsset(name);
@@ -107,7 +129,7 @@ void ReviewServer::Impl::AddRoutes() {
   server.Get("/", [](const httplib::Request&, httplib::Response& response) {
     ServeAsset("index.html", response);
   });
-  server.Get(R"(/(review\.js|review\.css))",
+  server.Get(R"(/(review\.js|review\.css|dygraph\.min\.js|dygraph\.min\.css))",
              [](const httplib::Request& request, httplib::Response& response) {
                ServeAsset(request.matches[1], response);
              });
@@ -144,6 +166,37 @@ void ReviewServer::Impl::AddRoutes() {
                                                : session.Refine(*frame),
                         response);
               });
+  // Long tasks (review_job.h): re-annotating frames, searching an initial pose.
+  server.Get("/api/job", [this](const httplib::Request&, httplib::Response& response) {
+    SetJson(session.JobJson(), response);
+  });
+  server.Post(
+      "/api/reannotate", [this](const httplib::Request& request, httplib::Response& response) {
+        const int num_frames = session.sequence().num_frames;
+        const StatusOr<int> first = ParseFrameIndex(request.get_param_value("first"), num_frames);
+        if (!first.ok()) return SetError(first.status(), response);
+        const StatusOr<int> last = ParseFrameIndex(request.get_param_value("last"), num_frames);
+        if (!last.ok()) return SetError(last.status(), response);
+        Respond(session.StartReannotate(*first, *last), response);
+      });
+  server.Get("/api/init", [this](const httplib::Request&, httplib::Response& response) {
+    SetJson(session.InitJson(), response);
+  });
+  server.Post("/api/init", [this](const httplib::Request& request, httplib::Response& response) {
+    const StatusOr<InitRequest> init = ParseInitRequest(request, session.sequence().num_frames);
+    if (!init.ok()) return SetError(init.status(), response);
+    Respond(session.StartInit(*init), response);
+  });
+  server.Post("/api/init/save", [this](const httplib::Request& request,
+                                       httplib::Response& response) {
+    int candidate = 0;
+    const std::string text = request.get_param_value("candidate");
+    if (!ParseCount(text, &candidate)) {
+      return SetError(Status::InvalidInput("candidate='" + text + "': expected an integer"),
+                      response);
+    }
+    Respond(session.SaveInitPose(candidate, request.get_param_value("overwrite") == "1"), response);
+  });
   server.Get("/api/trajectory", [this](const httplib::Request&, httplib::Response& response) {
     SetJson(session.TrajectoryJson(), response);
   });
@@ -157,8 +210,13 @@ void ReviewServer::Impl::AddRoutes() {
                                                                httplib::Response& response) {
     const StatusOr<ReviewTarget> target = session.Resolve(request.matches[1], request.matches[2]);
     if (!target.ok()) return SetError(target.status(), response);
-    const StatusOr<std::vector<unsigned char>> jpeg =
-        session.ViewJpeg(*target, options.jpeg_quality, request.get_param_value("mask") == "1");
+    int candidate = -1;
+    if (request.has_param("candidate") &&
+        !ParseCount(request.get_param_value("candidate"), &candidate)) {
+      return SetError(Status::InvalidInput("candidate: expected an integer"), response);
+    }
+    const StatusOr<std::vector<unsigned char>> jpeg = session.ViewJpeg(
+        *target, options.jpeg_quality, request.get_param_value("mask") == "1", candidate);
     if (!jpeg.ok()) return SetError(jpeg.status(), response);
     response.set_header("Cache-Control", "no-store");
     response.set_content(reinterpret_cast<const char*>(jpeg->data()), jpeg->size(), "image/jpeg");

@@ -4,11 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "bcot/annotate/annotator.h"
+#include "bcot/core/file_util.h"
 #include "bcot/core/image_io.h"
+#include "bcot/core/pose_io.h"
 #include "bcot/core/se3.h"
 #include "bcot/render/contour_drawing.h"
 
@@ -44,15 +47,26 @@ ordered_json TimelineJson(const QualityTimeline& timeline) {
   return json;
 }
 
-// The pose JSON of /api/frame/N/pose (review_session.h).
-ordered_json PoseObject(const PoseEdits& edits, int frame) {
-  const Eigen::Isometry3d pose = edits.Pose(frame);
+// A pose as the 12 numbers of a pose-file line (rotation row-major, then translation).
+ordered_json PoseNumbers(const Eigen::Isometry3d& pose) {
   ordered_json numbers = ordered_json::array();
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) numbers.push_back(pose.linear()(r, c));
   }
   for (int k = 0; k < 3; ++k) numbers.push_back(pose.translation()[k]);
-  return {{"frame", frame}, {"edits", edits.Depth(frame)}, {"rig_from_object", numbers}};
+  return numbers;
+}
+
+// The pose JSON of /api/frame/N/pose (review_session.h).
+ordered_json PoseObject(const PoseEdits& edits, int frame) {
+  return {{"frame", frame},
+          {"edits", edits.Depth(frame)},
+          {"rig_from_object", PoseNumbers(edits.Pose(frame))}};
+}
+
+bool IsFile(const std::string& path) {
+  std::error_code error;
+  return std::filesystem::is_regular_file(path, error);
 }
 
 Status NoAnnotationToEdit() {
@@ -62,12 +76,20 @@ Status NoAnnotationToEdit() {
 }  // namespace
 
 ReviewSession::ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> annotation,
-                             const Mesh& mesh)
-    : sequence_(std::move(sequence)), annotation_(std::move(annotation)), caster_(mesh) {
-  if (annotation_) {
-    edits_ = std::make_unique<PoseEdits>(annotation_->rig_from_object);
-    annotate_options_ = ReadAnnotateOptions(annotation_->dir + "/config.resolved.yaml", {});
+                             const Mesh& mesh, const InitOptions& init_options)
+    : sequence_(std::move(sequence)), caster_(mesh), init_options_(init_options) {
+  if (annotation) {
+    edits_ = std::make_unique<PoseEdits>(annotation->rig_from_object);
+    annotate_options_ = ReadAnnotateOptions(annotation->dir + "/config.resolved.yaml", {});
+    annotation_ = std::make_shared<const ReviewAnnotation>(std::move(*annotation));
   }
+}
+
+ReviewSession::~ReviewSession() = default;
+
+std::shared_ptr<const ReviewAnnotation> ReviewSession::Annotation() const {
+  std::lock_guard<std::mutex> lock(annotation_mutex_);
+  return annotation_;
 }
 
 StatusOr<std::string> ReviewSession::Refine(int frame) {
@@ -121,20 +143,25 @@ StatusOr<std::string> ReviewSession::SetKeyframeJson(int frame) {
     BCOT_RETURN_IF_ERROR(SetKeyframe(path, frame, edits_->Pose(frame), sequence_.num_frames));
   }
   int first = frame, last = frame;
-  if (annotation_->quality) {
-    const std::vector<int> bad = annotation_->quality->BadFrames();
+  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
+  if (annotation->quality) {
+    const std::vector<int> bad = annotation->quality->BadFrames();
     const auto is_bad = [&](int f) { return std::binary_search(bad.begin(), bad.end(), f); };
     while (first > 0 && is_bad(first - 1)) --first;
     while (last + 1 < sequence_.num_frames && is_bad(last + 1)) ++last;
   }
   const std::string command =
       fmt::format("bcot annotate {} --out {} --config {}/config.resolved.yaml --frames {}:{}",
-                  sequence_.dir, annotation_->dir, annotation_->dir, first, last);
-  return ordered_json{{"path", path}, {"frame", frame}, {"command", command}}.dump();
+                  sequence_.dir, annotation->dir, annotation->dir, first, last);
+  return ordered_json{
+      {"path", path}, {"frame", frame}, {"first", first}, {"last", last}, {"command", command}}
+      .dump();
 }
 
 StatusOr<std::unique_ptr<ReviewSession>> ReviewSession::Load(const std::string& sequence_dir,
-                                                             const std::string& annotation_dir) {
+                                                             const std::string& annotation_dir,
+                                                             const InitOptions& init_options) {
+  BCOT_RETURN_IF_ERROR(init_options.Validate());
   BCOT_ASSIGN_OR_RETURN(Sequence sequence, LoadSequence(sequence_dir, /*require_init_pose=*/false));
   std::optional<ReviewAnnotation> annotation;
   if (!annotation_dir.empty()) {
@@ -143,7 +170,7 @@ StatusOr<std::unique_ptr<ReviewSession>> ReviewSession::Load(const std::string& 
   BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
                         Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
   return std::unique_ptr<ReviewSession>(
-      new ReviewSession(std::move(sequence), std::move(annotation), mesh));
+      new ReviewSession(std::move(sequence), std::move(annotation), mesh, init_options));
 }
 
 StatusOr<ReviewTarget> ReviewSession::Resolve(const std::string& frame_text,
@@ -152,10 +179,12 @@ StatusOr<ReviewTarget> ReviewSession::Resolve(const std::string& frame_text,
 }
 
 std::string ReviewSession::SequenceJson() const {
+  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
   ordered_json json = {{"sequence", sequence_.dir},
                        {"num_frames", sequence_.num_frames},
-                       {"annotation", annotation_ ? ordered_json(annotation_->dir) : nullptr},
-                       {"contour", annotation_.has_value()},
+                       {"annotation", annotation ? ordered_json(annotation->dir) : nullptr},
+                       {"contour", annotation != nullptr},
+                       {"init_pose", IsFile(sequence_.dir + "/init_pose.txt")},
                        {"cameras", ordered_json::array()}};
   for (const RigCamera& camera : sequence_.rig.cameras()) {
     json["cameras"].push_back({{"name", camera.camera.name},
@@ -166,16 +195,18 @@ std::string ReviewSession::SequenceJson() const {
 }
 
 std::string ReviewSession::QualityJson() const {
-  if (!annotation_ || !annotation_->quality) return ordered_json{{"available", false}}.dump();
-  return TimelineJson(*annotation_->quality).dump();
+  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
+  if (!annotation || !annotation->quality) return ordered_json{{"available", false}}.dump();
+  return TimelineJson(*annotation->quality).dump();
 }
 
 std::string ReviewSession::DiagnosticsJson(int frame) const {
   BCOT_CHECK(frame >= 0 && frame < sequence_.num_frames);
-  if (!annotation_ || !annotation_->diagnostics) {
+  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
+  if (!annotation || !annotation->diagnostics) {
     return ordered_json{{"available", false}, {"frame", frame}}.dump();
   }
-  const FrameDiagnostics& diagnostics = *annotation_->diagnostics;
+  const FrameDiagnostics& diagnostics = *annotation->diagnostics;
   ordered_json values;
   for (size_t c = 0; c < diagnostics.columns.size(); ++c) {
     values[diagnostics.columns[c]] = diagnostics.rows[frame][c];
@@ -184,8 +215,9 @@ std::string ReviewSession::DiagnosticsJson(int frame) const {
 }
 
 std::string ReviewSession::TrajectoryJson() const {
-  if (!annotation_) return ordered_json{{"available", false}}.dump();
-  const std::vector<Eigen::Isometry3d>& poses = annotation_->rig_from_object;
+  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
+  if (!annotation) return ordered_json{{"available", false}}.dump();
+  const std::vector<Eigen::Isometry3d>& poses = annotation->rig_from_object;
   const Eigen::Vector3d centre = caster_.mesh().bbox_center();
   ordered_json rotation = ordered_json::array(), x = ordered_json::array(),
                y = ordered_json::array(), z = ordered_json::array();
@@ -196,8 +228,16 @@ std::string ReviewSession::TrajectoryJson() const {
     y.push_back(position.y());
     z.push_back(position.z());
   }
+  // keyframes.txt as it is now (the page sets keyframes); what was loaded if it cannot be read.
+  KeyframePoses keyframe_poses = sequence_.keyframes;
+  const std::string keyframes_path = sequence_.dir + "/keyframes.txt";
+  if (IsFile(keyframes_path)) {
+    std::lock_guard<std::mutex> lock(keyframes_mutex_);
+    StatusOr<KeyframePoses> current = ReadKeyframeFile(keyframes_path, sequence_.num_frames);
+    if (current.ok()) keyframe_poses = std::move(*current);
+  }
   ordered_json keyframes = ordered_json::array();
-  for (const auto& keyframe : sequence_.keyframes) keyframes.push_back(keyframe.first);
+  for (const auto& keyframe : keyframe_poses) keyframes.push_back(keyframe.first);
   return ordered_json{{"available", true},
                       {"rotation_deg", rotation},
                       {"centre_mm", {{"x", x}, {"y", y}, {"z", z}}},
@@ -206,16 +246,28 @@ std::string ReviewSession::TrajectoryJson() const {
 }
 
 StatusOr<std::vector<unsigned char>> ReviewSession::ViewJpeg(const ReviewTarget& target,
-                                                             int jpeg_quality, bool mask) const {
+                                                             int jpeg_quality, bool mask,
+                                                             int candidate) const {
   BCOT_CHECK(target.frame >= 0 && target.frame < sequence_.num_frames);
   BCOT_CHECK(target.camera >= 0 && target.camera < sequence_.rig.size());
   const RigCamera& camera = sequence_.rig[target.camera];
   BCOT_ASSIGN_OR_RETURN(
       cv::Mat3b image,
       ReadCameraImage(sequence_.image_paths[target.camera][target.frame], camera.camera));
-  if (annotation_) {
+  std::optional<Eigen::Isometry3d> candidate_pose;
+  if (candidate >= 0) {
+    std::lock_guard<std::mutex> lock(init_mutex_);
+    if (!init_result_ || candidate >= static_cast<int>(init_result_->candidates.size())) {
+      return Status::InvalidInput(fmt::format("no initial-pose candidate {}", candidate));
+    }
+    if (target.frame == init_frame_) {
+      candidate_pose = init_result_->candidates[candidate].rig_from_object;
+    }
+  }
+  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
+  if (annotation) {
     const Eigen::Isometry3d cam_from_object =
-        camera.cam_from_rig * annotation_->rig_from_object[target.frame];
+        camera.cam_from_rig * annotation->rig_from_object[target.frame];
     if (mask) {
       RenderOptions options;
       options.depth = options.normal_in_cam = options.point_in_object = options.triangle_id = false;
@@ -239,11 +291,125 @@ StatusOr<std::vector<unsigned char>> ReviewSession::ViewJpeg(const ReviewTarget&
           cv::Scalar(0, 230, 255), &image);
     }
   }
+  if (candidate_pose) {
+    DrawContour(caster_.ExtractContour(camera.camera, camera.cam_from_rig * *candidate_pose),
+                cv::Scalar(255, 0, 255), &image);
+  }
   std::vector<unsigned char> jpeg;
   if (!cv::imencode(".jpg", image, jpeg, {cv::IMWRITE_JPEG_QUALITY, jpeg_quality})) {
     return Status::Internal("cannot encode a JPEG frame image");
   }
   return jpeg;
+}
+
+StatusOr<std::string> ReviewSession::StartReannotate(int first, int last) {
+  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
+  if (!annotation) return NoAnnotationToEdit();
+  if (!annotate_options_.ok()) {
+    return Status::InvalidInput("re-annotating needs the annotation's options: " +
+                                annotate_options_.status().message());
+  }
+  if (first < 0 || last < first || last >= sequence_.num_frames) {
+    return Status::InvalidInput(fmt::format("re-annotate {}:{}: the sequence has frames 0..{}",
+                                            first, last, sequence_.num_frames - 1));
+  }
+  const std::string name = fmt::format("re-annotate {}:{}", first, last);
+  BCOT_RETURN_IF_ERROR(job_.Start(
+      name,
+      [this, first, last,
+       dir = annotation->dir](const ReviewJob::Progress& progress) -> StatusOr<std::string> {
+        AnnotateInputs inputs;
+        inputs.frames = fmt::format("{}:{}", first, last);
+        BCOT_ASSIGN_OR_RETURN(
+            const AnnotationOutcome outcome,
+            AnnotateSequenceDir(sequence_.dir, dir, *annotate_options_, inputs, progress));
+        BCOT_ASSIGN_OR_RETURN(ReviewAnnotation reloaded,
+                              LoadReviewAnnotation(dir, sequence_.num_frames));
+        edits_->Rebase(reloaded.rig_from_object, first, last);
+        {
+          std::lock_guard<std::mutex> lock(annotation_mutex_);
+          annotation_ = std::make_shared<const ReviewAnnotation>(std::move(reloaded));
+        }
+        return fmt::format("frames {}:{} re-annotated; the sequence is {} (worst {:.2f} px)", first,
+                           last, outcome.verdict.accepted ? "accepted" : "rejected",
+                           outcome.verdict.worst_px);
+      }));
+  return ordered_json{{"job", name}}.dump();
+}
+
+StatusOr<std::string> ReviewSession::StartInit(const InitRequest& request) {
+  BCOT_RETURN_IF_ERROR(CheckInitRequest(sequence_, request));
+  const std::string name = fmt::format("initial pose of frame {}", request.frame);
+  BCOT_RETURN_IF_ERROR(job_.Start(
+      name, [this, request](const ReviewJob::Progress& progress) -> StatusOr<std::string> {
+        const int num_views = sequence_.rig.size();
+        std::vector<cv::Mat3b> images;
+        for (int v = 0; v < num_views; ++v) {
+          BCOT_ASSIGN_OR_RETURN(
+              images.emplace_back(),
+              ReadCameraImage(sequence_.image_paths[v][request.frame], sequence_.rig[v].camera));
+          progress(v + 1, num_views + 1);
+        }
+        BCOT_ASSIGN_OR_RETURN(InitResult result,
+                              FindInitialPose(sequence_, caster_, images, request, init_options_));
+        progress(num_views + 1, num_views + 1);
+        const std::string summary = fmt::format(
+            "{} distinct candidate(s), centre from {}; {} poses scored in {:.1f} s, refined in "
+            "{:.1f} s",
+            result.candidates.size(), result.centre_source, result.poses_scored,
+            result.search_seconds, result.refine_seconds);
+        std::lock_guard<std::mutex> lock(init_mutex_);
+        init_result_ = std::move(result);
+        init_frame_ = request.frame;
+        return summary;
+      }));
+  return ordered_json{{"job", name}}.dump();
+}
+
+std::string ReviewSession::InitJson() const {
+  std::lock_guard<std::mutex> lock(init_mutex_);
+  ordered_json json = {{"candidates", ordered_json::array()}};
+  if (!init_result_) return json.dump();
+  json["frame"] = init_frame_;
+  json["centre_source"] = init_result_->centre_source;
+  for (const InitCandidate& candidate : init_result_->candidates) {
+    json["candidates"].push_back({{"energy", Number(candidate.energy)},
+                                  {"merged", candidate.merged},
+                                  {"rig_from_object", PoseNumbers(candidate.rig_from_object)}});
+  }
+  return json.dump();
+}
+
+StatusOr<std::string> ReviewSession::SaveInitPose(int candidate, bool overwrite) {
+  Eigen::Isometry3d pose;
+  int frame = 0;
+  {
+    std::lock_guard<std::mutex> lock(init_mutex_);
+    if (!init_result_ || candidate < 0 ||
+        candidate >= static_cast<int>(init_result_->candidates.size())) {
+      return Status::InvalidInput(fmt::format("no initial-pose candidate {}", candidate));
+    }
+    pose = init_result_->candidates[candidate].rig_from_object;
+    frame = init_frame_;
+  }
+  // init_pose.txt anchors frame 0; a pose found at another frame becomes its keyframe (an
+  // anchor of `bcot annotate` as well, docs/keyframes.md).
+  const std::string path = sequence_.dir + (frame == 0 ? "/init_pose.txt" : "/keyframes.txt");
+  if (frame == 0) {
+    if (!overwrite && IsFile(path)) {
+      return Status::InvalidInput(path + " exists; tick 'overwrite' to replace it");
+    }
+    BCOT_RETURN_IF_ERROR(WritePoseFile(path, {pose}));
+  } else {
+    std::lock_guard<std::mutex> lock(keyframes_mutex_);
+    BCOT_RETURN_IF_ERROR(SetKeyframe(path, frame, pose, sequence_.num_frames));
+  }
+  return ordered_json{{"path", path},
+                      {"frame", frame},
+                      {"command", fmt::format("bcot annotate {} --out ANNOTATION_DIR --config "
+                                              "configs/annotate.yaml",
+                                              sequence_.dir)}}
+      .dump();
 }
 
 }  // namespace bcot

@@ -2,9 +2,11 @@
 // protocol by tests/browser/review_page.py (Python's standard library only): on a tiny annotated
 // `bcot synth` sequence, clicking the timeline at a chosen frame shows that frame with every
 // view's image loaded, → steps on, a listed bad frame (if any) is shown when clicked, and on an
-// annotation the trajectory, the mask and a nudge set as a keyframe work.
+// annotation the trajectory, the mask, a nudge set as a keyframe and the re-annotation around it
+// work; on a sequence without init_pose.txt, two clicks give an initial pose saved by the page.
 // Skipped without Chromium or Python. Screenshots are kept in the test's temporary directory
 // while it runs; set BCOT_TEST_ARTIFACTS to a directory to keep them. CTest label: browser.
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -13,8 +15,10 @@
 #include <memory>
 
 #include "bcot/core/file_util.h"
+#include "bcot/core/pose_io.h"
 #include "bcot/review/review_server.h"
 #include "bcot/review/review_session.h"
+#include "synth_truth.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -35,8 +39,10 @@ class ReviewBrowserTest : public ::testing::Test {
   }
 
   // Serves the sequence (and annotation) of `dir` and runs the page driver clicking `frame`.
+  // `clicks` ("cam0:X,Y;cam1:X,Y"): the initialisation flow on frame 0 as well.
   static void ExpectPageWorks(const test::TempDir& dir, const std::string& annotation, int frame,
-                              const std::string& address_suffix = "") {
+                              const std::string& address_suffix = "",
+                              const std::string& clicks = "") {
     const StatusOr<std::unique_ptr<ReviewSession>> session =
         ReviewSession::Load(dir.File("seq"), annotation);
     ASSERT_TRUE(session.ok()) << session.status().message();
@@ -48,15 +54,22 @@ class ReviewBrowserTest : public ::testing::Test {
     const char* artifacts = std::getenv("BCOT_TEST_ARTIFACTS");
     const std::string shots = artifacts != nullptr ? artifacts : dir.path();
     std::string output;
-    const int code =
-        test::RunCommand("timeout 300 python3 " + test::SourcePath("tests/browser/review_page.py") +
-                             " " + kChromium + " '" + server.Url() + address_suffix + "' " +
-                             std::to_string(frame) + " " + shots,
-                         &output);
+    const int code = test::RunCommand(
+        "timeout 300 python3 " + test::SourcePath("tests/browser/review_page.py") + " " +
+            kChromium + " '" + server.Url() + address_suffix + "' " + std::to_string(frame) + " " +
+            shots + (clicks.empty() ? "" : " '" + clicks + "'"),
+        &output);
     EXPECT_EQ(code, 0) << output;
     EXPECT_THAT(output, HasSubstr("ok: no console messages")) << output;
     if (!annotation.empty()) {
       EXPECT_THAT(output, HasSubstr("ok: nudged frame 0 and set it as keyframe 0")) << output;
+      EXPECT_THAT(output, HasSubstr("ok: re-annotated frames 0:")) << output;
+      // The re-annotation finished its files: DONE again, poses for every frame.
+      EXPECT_TRUE(std::filesystem::exists(annotation + "/DONE"));
+      const StatusOr<std::vector<Eigen::Isometry3d>> poses =
+          ReadPoseFile(annotation + "/rig_from_object.txt");
+      ASSERT_TRUE(poses.ok()) << poses.status().message();
+      EXPECT_EQ(static_cast<int>(poses->size()), kFrames);
       const StatusOr<std::string> keyframes = ReadTextFile(dir.File("seq/keyframes.txt"));
       ASSERT_TRUE(keyframes.ok()) << keyframes.status().message();
       EXPECT_EQ(keyframes->substr(0, 2), "0 ");
@@ -89,6 +102,28 @@ TEST_F(ReviewBrowserTest, SequenceWithoutAnnotation) {
   test::TempDir dir;
   test::MakeTinyAnnotatedSequence(dir.File("seq"), kFrames, "");
   ExpectPageWorks(dir, "", 2);
+}
+
+// No init_pose.txt: clicks 2 px off the object's true centre in both views of frame 0, "find
+// pose", the best candidate saved as init_pose.txt near the truth.
+TEST_F(ReviewBrowserTest, InitialPoseFromTwoClicks) {
+  test::TempDir dir;
+  const std::string seq = dir.File("seq");
+  test::Synthesize(seq,
+                   "--set cameras.width=320 --set cameras.height=256 --set motion.num_frames=3"
+                   " --set distractors.count=1 --set render.object_samples_per_axis=2");
+  std::filesystem::remove(seq + "/init_pose.txt");
+  std::string clicks;
+  for (int camera = 0; camera < 2; ++camera) {
+    const Eigen::Vector2d pixel =
+        test::TrueCentrePixel(seq, camera, 0) + Eigen::Vector2d(2.0, -2.0);
+    clicks += fmt::format("{}cam{}:{:.2f},{:.2f}", camera ? ";" : "", camera, pixel.x(), pixel.y());
+  }
+  ExpectPageWorks(dir, "", 1, "", clicks);
+  const StatusOr<std::vector<Eigen::Isometry3d>> saved = ReadPoseFile(seq + "/init_pose.txt");
+  ASSERT_TRUE(saved.ok()) << saved.status().message();
+  ASSERT_EQ(saved->size(), 1u);
+  EXPECT_THAT(saved->front(), test::PoseNear(test::TruePose(seq, 0), 5.0, 10.0));
 }
 
 }  // namespace

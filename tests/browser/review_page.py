@@ -2,15 +2,19 @@
 """Drives the page of `bcot review` in headless Chromium through the DevTools protocol over a
 pipe (--remote-debugging-pipe; Python's standard library only, no driver or npm package).
 
-  review_page.py CHROMIUM URL FRAME SCREENSHOT_DIR
+  review_page.py CHROMIUM URL FRAME SCREENSHOT_DIR [CAM:X,Y;CAM:X,Y]
 
 Opens URL, waits until the page has shown frame 0 with every image loaded, clicks the timeline
-at FRAME, and checks that the page then shows FRAME (number, slider, every view's image loaded
-at the camera's size); then → moves to FRAME + 1 and, when the page lists bad frames, clicking
-the first one shows it; with an annotation, the trajectory charts hold their series, a click on
-the rotation chart shows frame 0, the mask box loads the tinted images, and a nudge of frame 0
-set as its keyframe writes keyframes.txt. Any console message or script exception is a failure (the page logs
-nothing). Screenshots go to SCREENSHOT_DIR. Prints one line per check; exit 0 when all pass.
+at FRAME (without an annotation, which has no timeline, goes there by keys), and checks that the
+page then shows FRAME (number, slider, every view's image loaded at the camera's size); then →
+moves to FRAME + 1 and, when the page lists bad frames, clicking the first one shows it; with an
+annotation, the trajectory charts hold their series, a click on the rotation chart shows frame
+0, the mask box loads the tinted images, a nudge of frame 0 set as its keyframe writes
+keyframes.txt, and re-annotating around it from the page runs to the end and drops the edit.
+With clicks (last argument; image pixels of frame 0), on a sequence without annotation: the
+clicks on the views, "find pose", the first candidate drawn and saved as init_pose.txt.
+Any console message or script exception is a failure (the page logs nothing). Screenshots go to
+SCREENSHOT_DIR. Prints one line per check; exit 0 when all pass.
 """
 import base64
 import fcntl
@@ -107,6 +111,10 @@ class Chromium:
         raise RuntimeError(f'timed out waiting for {what} ({expression})')
 
     def click(self, x, y):
+        """Moves the pointer to (x, y) and clicks there, as a hand does (charts track the
+        pointer's moves)."""
+        self.send('Input.dispatchMouseEvent', {'type': 'mouseMoved', 'x': x, 'y': y})
+        time.sleep(0.2)  # a hand rests before it presses; the charts update on the move
         for kind in ('mousePressed', 'mouseReleased'):
             self.send('Input.dispatchMouseEvent', {'type': kind, 'x': x, 'y': y,
                                                    'button': 'left', 'clickCount': 1})
@@ -169,7 +177,52 @@ def expect_frame(browser, frame):
     print(f'ok: frame {frame} shown, {len(shown["images"])} images loaded')
 
 
-def run(binary, url, frame, shots):
+def click_chart(browser, chart, frame):
+    """Clicks chart `chart` (a dygraph of the page) where it draws `frame`."""
+    x, y = browser.evaluate(f"chartPoint('{chart}', {frame})")
+    browser.click(x, y)
+
+
+def click_image(browser, camera, x, y):
+    """Clicks the view of `camera` at image pixel (x, y)."""
+    px, py = browser.evaluate(f"""(() => {{
+        const img = document.querySelector('#views img[data-camera="{camera}"]');
+        img.scrollIntoView({{block: 'center'}});
+        const rect = img.getBoundingClientRect();
+        return [rect.left + {x} / img.naturalWidth * rect.width,
+                rect.top + {y} / img.naturalHeight * rect.height];
+    }})()""")
+    browser.click(px, py)
+
+
+def initialise(browser, clicks, shots):
+    """The initialisation flow: clicks on frame 0's views, find pose, save the first candidate."""
+    for click in clicks.split(';'):
+        camera, xy = click.split(':')
+        x, y = (float(v) for v in xy.split(','))
+        click_image(browser, camera, x, y)
+    shown = browser.evaluate("document.getElementById('init-clicks').textContent")
+    assert shown.count(':') == len(clicks.split(';')), f'clicks shown: {shown}'
+    click_element(browser, '#init-find')
+    browser.wait_for("document.body.dataset.job === 'done' || "
+                     "document.body.dataset.job === 'failed'", 'the pose search', 1800)
+    status = browser.evaluate("document.getElementById('job-status').textContent")
+    assert browser.evaluate("document.body.dataset.job") == 'done', f'search failed: {status}'
+    candidates = int(browser.evaluate('document.body.dataset.initCandidates'))
+    assert candidates >= 1, 'no candidates'
+    browser.wait_for("[...document.querySelectorAll('#views img')].every("
+                     "(img) => img.getAttribute('src').endsWith('?candidate=0'))",
+                     'the candidate overlays')
+    expect_frame(browser, 0)
+    browser.screenshot(os.path.join(shots, 'review_init.png'))
+    click_element(browser, '#init-save')
+    browser.wait_for("document.body.dataset.initSaved", 'the saved pose')
+    saved = browser.evaluate('document.body.dataset.initSaved')
+    print(f'ok: initial pose from {len(clicks.split(";"))} clicks, {candidates} candidate(s), '
+          f'saved to {saved}')
+
+
+def run(binary, url, frame, shots, clicks):
     with tempfile.TemporaryDirectory() as profile:
         browser = Chromium(binary, profile)
         try:
@@ -177,12 +230,15 @@ def run(binary, url, frame, shots):
             browser.wait_for("document.body?.dataset.ready === 'yes'", 'the page to start')
             # The page opens at the frame the address names (bcot review --frame N), else 0.
             expect_frame(browser, int(url.split('#frame=')[1]) if '#frame=' in url else 0)
-            # Click the timeline where it draws `frame`.
-            x, y = browser.evaluate(f"""(() => {{
-                const rect = document.getElementById('timeline').getBoundingClientRect();
-                return [rect.left + timelineScale().x({frame}), rect.top + rect.height / 2];
-            }})()""")
-            browser.click(x, y)
+            if clicks:
+                initialise(browser, clicks, shots)
+            if browser.evaluate("'timeline' in state.charts"):
+                click_chart(browser, 'timeline', frame)
+            else:
+                browser.key('Home', 36)
+                expect_frame(browser, 0)
+                for _ in range(frame):
+                    browser.key('ArrowRight', 39)
             expect_frame(browser, frame)
             browser.screenshot(os.path.join(shots, 'review_timeline_click.png'))
             browser.key('ArrowRight', 39)
@@ -193,18 +249,11 @@ def run(binary, url, frame, shots):
                 expect_frame(browser, bad[0])
             print(f'ok: bad frames listed: {bad}')
             if browser.evaluate('state.trajectory.available'):
-                paths = browser.evaluate("""[
-                    document.querySelectorAll('#rotation path').length,
-                    document.querySelectorAll('#translation path').length]""")
-                assert paths == [1, 3], f'trajectory charts hold {paths} series, not [1, 3]'
-                # Click the rotation chart where it draws frame 0.
-                x, y = browser.evaluate("""(() => {
-                    const svg = document.getElementById('rotation');
-                    svg.scrollIntoView({block: 'center'});
-                    const rect = svg.getBoundingClientRect();
-                    return [rect.left + timelineScale(svg).x(0), rect.top + rect.height / 2];
-                })()""")
-                browser.click(x, y)
+                series = browser.evaluate("""[
+                    state.charts.rotation.numColumns() - 1,
+                    state.charts.translation.numColumns() - 1]""")
+                assert series == [1, 3], f'trajectory charts hold {series} series, not [1, 3]'
+                click_chart(browser, 'rotation', 0)
                 expect_frame(browser, 0)
                 print('ok: trajectory charts drawn, a click on them shows the frame')
                 click_element(browser, '#mask')
@@ -222,6 +271,18 @@ def run(binary, url, frame, shots):
                 browser.wait_for("document.body.dataset.keyframe === '0'", 'the keyframe')
                 browser.screenshot(os.path.join(shots, 'review_edit.png'))
                 print('ok: nudged frame 0 and set it as keyframe 0')
+
+                span = browser.evaluate("[document.getElementById('reannotate-first').value, "
+                                        "document.getElementById('reannotate-last').value]")
+                click_element(browser, '#reannotate')
+                browser.wait_for("document.body.dataset.job === 'done' || "
+                                 "document.body.dataset.job === 'failed'", 're-annotation', 1800)
+                status = browser.evaluate("document.getElementById('job-status').textContent")
+                assert browser.evaluate('document.body.dataset.job') == 'done', status
+                browser.wait_for("document.body.dataset.edits === '0'", 'the edit dropped')
+                expect_frame(browser, 0)
+                browser.screenshot(os.path.join(shots, 'review_reannotated.png'))
+                print(f'ok: re-annotated frames {span[0]}:{span[1]} from the page: {status}')
             browser.screenshot(os.path.join(shots, 'review_end.png'))
             problems = browser.problems()
             assert not problems, f'console messages or exceptions: {problems}'
@@ -231,12 +292,13 @@ def run(binary, url, frame, shots):
 
 
 def main():
-    if len(sys.argv) != 5:
+    if len(sys.argv) not in (5, 6):
         print(__doc__, file=sys.stderr)
         return 2
     binary, url, frame, shots = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
+    clicks = sys.argv[5] if len(sys.argv) == 6 else ''
     try:
-        run(binary, url, frame, shots)
+        run(binary, url, frame, shots, clicks)
     except (AssertionError, RuntimeError, OSError) as error:
         print(f'FAILED: {error}')
         return 1

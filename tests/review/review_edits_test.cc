@@ -99,6 +99,28 @@ TEST(PoseEditsTest, UndoReturnsToThePreviousPose) {
   EXPECT_FALSE(edits.Undo(0));
 }
 
+// A re-annotation of frames 1..2 replaces every original pose and drops the edits of those
+// frames; the edit of frame 3 stays on top of its new original.
+TEST(PoseEditsTest, RebaseDropsTheEditsOfTheReannotatedFrames) {
+  const Eigen::Isometry3d original = ObjectPose();
+  PoseEdits edits({original, original, original, original});
+  Eigen::Isometry3d edited = original;
+  edited.translation().y() += 3.0;
+  for (int frame : {1, 2, 3}) edits.Push(frame, edited);
+  Eigen::Isometry3d reannotated = original;
+  reannotated.translation().z() += 1.0;
+  edits.Rebase({reannotated, reannotated, reannotated, reannotated}, 1, 2);
+  EXPECT_TRUE(edits.Pose(0).isApprox(reannotated));
+  for (int frame : {1, 2}) {
+    EXPECT_EQ(edits.Depth(frame), 0);
+    EXPECT_TRUE(edits.Pose(frame).isApprox(reannotated));
+  }
+  EXPECT_EQ(edits.Depth(3), 1);
+  EXPECT_TRUE(edits.Pose(3).isApprox(edited));
+  EXPECT_TRUE(edits.Undo(3));
+  EXPECT_TRUE(edits.Pose(3).isApprox(reannotated));
+}
+
 TEST(SetKeyframeTest, MergesWithTheFileAndReplacesTheFramesLine) {
   test::TempDir dir;
   const std::string path = dir.File("keyframes.txt");

@@ -2,18 +2,24 @@
 // sequence annotated with configs/track.yaml (and the same sequence without annotation).
 #include "bcot/review/review_server.h"
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
 
+#include <chrono>
+#include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <thread>
 
 #include "bcot/core/file_util.h"
 #include "bcot/core/keyframes.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/se3.h"
+#include "synth_truth.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -70,6 +76,24 @@ class ReviewServerTest : public ::testing::Test {
     EXPECT_EQ(result->get_header_value("Content-Type"), "image/jpeg");
     const std::vector<unsigned char> bytes(result->body.begin(), result->body.end());
     return cv::imdecode(bytes, cv::IMREAD_COLOR);
+  }
+
+  static httplib::Result Post(httplib::Client& client, const std::string& path) {
+    return client.Post(path, "", "");
+  }
+  // GET /api/job until its state is not "running" (at most 5 minutes).
+  static json WaitForJob(httplib::Client& client) {
+    json job;
+    for (int attempt = 0; attempt < 3000; ++attempt) {
+      job = GetJson(client, "/api/job");
+      if (job["state"] != "running") break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    return job;
+  }
+  static Eigen::Vector3d Translation(const json& pose) {
+    return Eigen::Vector3d(pose["rig_from_object"][9], pose["rig_from_object"][10],
+                           pose["rig_from_object"][11]);
   }
 
   static test::TempDir* dir_;
@@ -280,6 +304,141 @@ TEST_F(ReviewServerTest, NudgeRefineUndoAndKeyframe) {
   ASSERT_TRUE(no_annotation);
   EXPECT_EQ(no_annotation->status, 400);
   EXPECT_THAT(no_annotation->body, HasSubstr("no annotation to edit"));
+}
+
+// Re-annotating frames from the page: a nudged frame set as keyframe, frames 1..2 re-annotated
+// in the background; the page's annotation is then the new one (the edits of those frames
+// dropped, the edit of frame 3 kept), the files are a finished annotation again.
+TEST_F(ReviewServerTest, ReannotateRunsInTheBackgroundAndReloads) {
+  test::TempDir work;
+  const std::string seq = test::CopyTree(dir_->File("seq"), work.File("seq"));
+  const std::string ann = test::CopyTree(dir_->File("ann"), work.File("ann"));
+  StatusOr<std::unique_ptr<ReviewSession>> session = ReviewSession::Load(seq, ann);
+  ASSERT_TRUE(session.ok()) << session.status().message();
+  RunningServer running(**session);
+  httplib::Client client = running.Client();
+  EXPECT_EQ(GetJson(client, "/api/job")["state"], "idle");
+  const json original = GetJson(client, "/api/frame/1/pose");
+  ASSERT_EQ(Post(client, "/api/frame/1/nudge?camera=cam0&dx=5")->status, 200);
+  ASSERT_EQ(Post(client, "/api/frame/1/keyframe")->status, 200);
+  ASSERT_EQ(Post(client, "/api/frame/3/nudge?camera=cam0&dy=3")->status, 200);
+  const json nudged = GetJson(client, "/api/frame/1/pose");
+
+  const httplib::Result started = Post(client, "/api/reannotate?first=1&last=2");
+  ASSERT_TRUE(started);
+  ASSERT_EQ(started->status, 200) << started->body;
+  EXPECT_EQ(json::parse(started->body)["job"], "re-annotate 1:2");
+  const json job = WaitForJob(client);
+  ASSERT_EQ(job["state"], "done") << job.dump();
+  EXPECT_THAT(job["message"].get<std::string>(), HasSubstr("frames 1:2 re-annotated"));
+  EXPECT_EQ(job["done"], job["total"]);
+  EXPECT_TRUE(std::filesystem::exists(ann + "/DONE"));
+
+  // Frame 1 was solved from its nudged keyframe back towards the annotated pose.
+  const json solved = GetJson(client, "/api/frame/1/pose");
+  EXPECT_EQ(solved["edits"], 0);
+  EXPECT_LT((Translation(solved) - Translation(original)).norm(),
+            (Translation(nudged) - Translation(original)).norm() / 3.0);
+  EXPECT_EQ(GetJson(client, "/api/frame/3/pose")["edits"], 1);
+  const StatusOr<std::vector<Eigen::Isometry3d>> written =
+      ReadPoseFile(ann + "/rig_from_object.txt");
+  ASSERT_TRUE(written.ok()) << written.status().message();
+  EXPECT_NEAR((*written)[1].translation().x(), Translation(solved).x(), 1e-6);
+  EXPECT_EQ(GetJson(client, "/api/trajectory")["keyframes"], json::array({1}));
+
+  for (const auto& [path, message] : std::vector<std::pair<std::string, std::string>>{
+           {"/api/reannotate?first=2&last=1", "re-annotate 2:1"},
+           {"/api/reannotate?first=0&last=9", "9"},
+           {"/api/reannotate?first=x&last=1", "x"}}) {
+    const httplib::Result bad = Post(client, path);
+    ASSERT_TRUE(bad) << path;
+    EXPECT_TRUE(bad->status == 400 || bad->status == 404) << path << ": " << bad->status;
+    EXPECT_THAT(bad->body, HasSubstr(message)) << path;
+  }
+  RunningServer bare(*bare_);
+  httplib::Client bare_client = bare.Client();
+  const httplib::Result no_annotation = Post(bare_client, "/api/reannotate?first=0&last=1");
+  ASSERT_TRUE(no_annotation);
+  EXPECT_EQ(no_annotation->status, 400);
+  EXPECT_THAT(no_annotation->body, HasSubstr("no annotation"));
+}
+
+// The initial pose from clicks on the object's centre at frame 0: candidates, their overlays,
+// the chosen one saved as init_pose.txt (never over an existing one without overwrite); at
+// another frame it becomes that frame's keyframe.
+TEST_F(ReviewServerTest, InitialPoseFromClicksIsSearchedDrawnAndSaved) {
+  test::TempDir work;
+  const std::string seq = test::CopyTree(dir_->File("seq"), work.File("seq"));
+  std::filesystem::remove(seq + "/init_pose.txt");
+  StatusOr<InitOptions> options = ReadInitOptions("", {"init.grid_rotations=1000"});
+  ASSERT_TRUE(options.ok()) << options.status().message();
+  StatusOr<std::unique_ptr<ReviewSession>> session = ReviewSession::Load(seq, "", *options);
+  ASSERT_TRUE(session.ok()) << session.status().message();
+  RunningServer running(**session);
+  httplib::Client client = running.Client();
+  EXPECT_EQ(GetJson(client, "/api/init")["candidates"], json::array());
+  EXPECT_FALSE(GetJson(client, "/api/sequence")["init_pose"]);
+  const auto click = [&](int camera, int frame) {
+    const Eigen::Vector2d pixel = test::TrueCentrePixel(seq, camera, frame);
+    return fmt::format("click=cam{}:{:.2f},{:.2f}", camera, pixel.x(), pixel.y());
+  };
+
+  for (const auto& [path, message] : std::vector<std::pair<std::string, std::string>>{
+           {"/api/init?click=cam0:5", "expected CAM:X,Y"},
+           {"/api/init?click=cam7:5,5", "cam7"},
+           {"/api/init?frame=9&" + click(0, 0), "9"},
+           {"/api/init", "click"}}) {
+    const httplib::Result bad = Post(client, path);
+    ASSERT_TRUE(bad) << path;
+    EXPECT_TRUE(bad->status == 400 || bad->status == 404) << path << ": " << bad->status;
+    EXPECT_THAT(bad->body, HasSubstr(message)) << path;
+  }
+
+  const httplib::Result started = Post(client, "/api/init?" + click(0, 0) + "&" + click(1, 0));
+  ASSERT_TRUE(started);
+  ASSERT_EQ(started->status, 200) << started->body;
+  const json job = WaitForJob(client);
+  ASSERT_EQ(job["state"], "done") << job.dump();
+  const json init = GetJson(client, "/api/init");
+  EXPECT_EQ(init["frame"], 0);
+  ASSERT_GE(init["candidates"].size(), 1u);
+  // The candidate's contour is drawn over the plain image.
+  const cv::Mat plain = GetImage(client, "/api/frame/0/view/cam0.jpg");
+  const cv::Mat drawn = GetImage(client, "/api/frame/0/view/cam0.jpg?candidate=0");
+  cv::Mat change;
+  cv::absdiff(plain, drawn, change);
+  cv::Mat largest_change;
+  cv::reduce(change.reshape(1, change.total()), largest_change, 1, cv::REDUCE_MAX);
+  EXPECT_GT(cv::countNonZero(largest_change > 60), 40) << "no contour of the candidate";
+  const httplib::Result unknown = client.Get("/api/frame/0/view/cam0.jpg?candidate=99");
+  ASSERT_TRUE(unknown);
+  EXPECT_EQ(unknown->status, 400);
+
+  const httplib::Result saved = Post(client, "/api/init/save?candidate=0");
+  ASSERT_TRUE(saved);
+  ASSERT_EQ(saved->status, 200) << saved->body;
+  EXPECT_EQ(json::parse(saved->body)["path"], seq + "/init_pose.txt");
+  const StatusOr<std::vector<Eigen::Isometry3d>> pose = ReadPoseFile(seq + "/init_pose.txt");
+  ASSERT_TRUE(pose.ok()) << pose.status().message();
+  EXPECT_THAT(pose->front(), test::PoseNear(test::TruePose(seq, 0), 5.0, 10.0));
+  EXPECT_TRUE(GetJson(client, "/api/sequence")["init_pose"]);
+  const httplib::Result again = Post(client, "/api/init/save?candidate=0");
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 400);
+  EXPECT_THAT(again->body, HasSubstr("init_pose.txt exists"));
+  EXPECT_EQ(Post(client, "/api/init/save?candidate=0&overwrite=1")->status, 200);
+  EXPECT_EQ(Post(client, "/api/init/save?candidate=99")->status, 400);
+
+  // At frame 2 the pose becomes keyframe 2.
+  ASSERT_EQ(Post(client, "/api/init?frame=2&" + click(0, 2) + "&" + click(1, 2))->status, 200);
+  ASSERT_EQ(WaitForJob(client)["state"], "done");
+  const httplib::Result keyframe = Post(client, "/api/init/save?candidate=0");
+  ASSERT_TRUE(keyframe);
+  ASSERT_EQ(keyframe->status, 200) << keyframe->body;
+  EXPECT_EQ(json::parse(keyframe->body)["path"], seq + "/keyframes.txt");
+  const StatusOr<KeyframePoses> keyframes = ReadKeyframeFile(seq + "/keyframes.txt", kFrames);
+  ASSERT_TRUE(keyframes.ok()) << keyframes.status().message();
+  EXPECT_EQ(keyframes->count(2), 1u);
 }
 
 // Frames and cameras come from the sequence; anything else, path-like or not, is an error

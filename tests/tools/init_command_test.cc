@@ -12,6 +12,7 @@
 #include "bcot/core/sequence.h"
 #include "bcot/core/status.h"
 #include "bcot/render/mesh.h"
+#include "synth_truth.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -37,23 +38,12 @@ class InitCommandTest : public ::testing::Test {
   static std::string Init(const std::string& arguments) {
     return test::BcotBinary() + " init " + arguments;
   }
-  static Eigen::Isometry3d TruthAtFrame0() {
-    StatusOr<std::vector<Eigen::Isometry3d>> truth =
-        ReadPoseFile(dir_->File("seq/gt/rig_from_object.txt"));
-    BCOT_CHECK(truth.ok());
-    return truth->front();
-  }
+  static Eigen::Isometry3d TruthAtFrame0() { return test::TruePose(dir_->File("seq"), 0); }
   // `--click CAM:X,Y` at the true projected object centre of frame 0 plus `offset_px`.
   static std::string TrueClick(int camera_index, const Eigen::Vector2d& offset_px) {
-    StatusOr<Sequence> sequence = LoadSequence(dir_->File("seq"), /*require_init_pose=*/false);
-    BCOT_CHECK(sequence.ok());
-    StatusOr<Mesh> mesh = Mesh::Load(sequence->object.mesh_path, sequence->object.unit_to_mm);
-    BCOT_CHECK(mesh.ok());
-    const RigCamera& camera = sequence->rig[camera_index];
     const Eigen::Vector2d pixel =
-        camera.camera.Project(camera.cam_from_rig * TruthAtFrame0() * mesh->bbox_center()) +
-        offset_px;
-    return " --click " + camera.camera.name + ":" + std::to_string(pixel.x()) + "," +
+        test::TrueCentrePixel(dir_->File("seq"), camera_index, 0) + offset_px;
+    return " --click cam" + std::to_string(camera_index) + ":" + std::to_string(pixel.x()) + "," +
            std::to_string(pixel.y());
   }
 

@@ -48,6 +48,9 @@ class PoseEdits {
   void Push(int frame, const Eigen::Isometry3d& rig_from_object);
   // Drops the frame's last edit; false when it has none.
   bool Undo(int frame);
+  // New original poses (a re-annotation; same frame count, CHECKed); the edits of frames
+  // first..last are dropped, the others stay on top of their new originals.
+  void Rebase(std::vector<Eigen::Isometry3d> rig_from_object, int first, int last);
 
  private:
   mutable std::mutex mutex_;

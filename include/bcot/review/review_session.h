@@ -1,8 +1,10 @@
 // What `bcot review` serves: one sequence, optionally one annotation of it, and the Embree caster
 // of its object. Loaded and validated once; afterwards every method is thread-safe (the HTTP
-// server answers requests from several threads): the read-only ones are const, the edits of
-// the annotation's poses (review_edits.h) are kept in memory behind their own locks and reach
-// the disk only as keyframes.txt.
+// server answers requests from several threads): the edits of the annotation's poses
+// (review_edits.h) are kept in memory behind their own locks and reach the disk only as
+// keyframes.txt; the annotation itself is replaced as a whole (a snapshot per request) when a
+// re-annotation started from the page has finished. Long tasks (re-annotating frames,
+// searching an initial pose) run one at a time as a ReviewJob (review_job.h).
 //
 // The JSON documents are described in docs/review.md. Images are always the sequence's own
 // files, addressed by a validated ReviewTarget, never by a path from a request.
@@ -15,12 +17,14 @@
 #include <vector>
 
 #include "bcot/annotate/annotate_options.h"
+#include "bcot/annotate/initializer.h"
 #include "bcot/core/sequence.h"
 #include "bcot/core/status.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
 #include "bcot/review/review_annotation.h"
 #include "bcot/review/review_edits.h"
+#include "bcot/review/review_job.h"
 #include "bcot/review/review_request.h"
 
 namespace bcot {
@@ -28,12 +32,15 @@ namespace bcot {
 class ReviewSession {
  public:
   // Loads the sequence in `sequence_dir` (init_pose.txt not required) and, when
-  // `annotation_dir` is not empty, its annotation. Errors name the file at fault.
+  // `annotation_dir` is not empty, its annotation. Errors name the file at fault. The page's
+  // initialisation searches with `init_options` (bcot init's; `bcot review --config`).
   static StatusOr<std::unique_ptr<ReviewSession>> Load(const std::string& sequence_dir,
-                                                       const std::string& annotation_dir);
+                                                       const std::string& annotation_dir,
+                                                       const InitOptions& init_options = {});
+  // Waits for a running job.
+  ~ReviewSession();
 
   const Sequence& sequence() const { return sequence_; }
-  const std::optional<ReviewAnnotation>& annotation() const { return annotation_; }
 
   // The frame index and camera of a request, validated against the sequence.
   StatusOr<ReviewTarget> Resolve(const std::string& frame_text,
@@ -47,12 +54,14 @@ class ReviewSession {
   // /api/frame/N/diagnostics: frames.csv's row of `frame` as {column: value}, or
   // {"available": false}. `frame` must be a valid index (CHECKed).
   std::string DiagnosticsJson(int frame) const;
-  // /api/frame/N/view/CAM.jpg[?mask=1]: the frame image of the target's camera, with the
-  // silhouette contour of the annotated pose drawn in green when there is an annotation, and
-  // with `mask` its silhouette tinted green at 35 % (where the model covers the image).
-  // An edited frame shows the edited pose's contour in yellow over the annotated one.
+  // /api/frame/N/view/CAM.jpg[?mask=1][&candidate=K]: the frame image of the target's camera,
+  // with the silhouette contour of the annotated pose drawn in green when there is an
+  // annotation, and with `mask` its silhouette tinted green at 35 % (where the model covers the
+  // image). An edited frame shows the edited pose's contour in yellow over the annotated one.
+  // `candidate` >= 0 draws that candidate of the last initial-pose search in magenta (on the
+  // searched frame; kInvalidInput for a candidate that does not exist).
   StatusOr<std::vector<unsigned char>> ViewJpeg(const ReviewTarget& target, int jpeg_quality,
-                                                bool mask = false) const;
+                                                bool mask = false, int candidate = -1) const;
   // /api/frame/N/pose: {"frame", "edits" (on the frame's undo stack), "rig_from_object" (12
   // numbers, the pose-file order)}; kInvalidInput without an annotation.
   StatusOr<std::string> PoseJson(int frame) const;
@@ -73,19 +82,53 @@ class ReviewSession {
   StatusOr<std::string> SetKeyframeJson(int frame);
   // /api/trajectory: per frame of the annotation, the rotation (deg) of the object from its
   // frame-0 orientation and the position of its bounding-box centre in the rig (mm), and the
-  // sequence's keyframes; {"available": false} without an annotation.
+  // sequence's keyframes (as keyframes.txt holds them now); {"available": false} without an
+  // annotation.
   std::string TrajectoryJson() const;
 
+  // GET /api/job: the state of the last job (ReviewJob::Json).
+  std::string JobJson() const { return job_.Json(); }
+  // POST /api/reannotate?frames=A:B: starts re-annotating frames first..last as `bcot annotate
+  // SEQ --out ANN --config ANN/config.resolved.yaml --frames A:B` would (the keyframes of
+  // keyframes.txt as it is at the start), then reloads the annotation, so the page shows the
+  // new poses, errors and diagnostics; the edits of those frames are dropped, the others kept.
+  // {"job": name}; kInvalidInput without an annotation, with frames outside the sequence or
+  // while a job runs.
+  StatusOr<std::string> StartReannotate(int first, int last);
+  // POST /api/init?frame=N&click=CAM:X,Y&click=...: starts bcot init's search from clicks on the
+  // object's centre (FindInitialPose; CheckInitRequest's errors come back at once); its
+  // candidates then in InitJson. {"job": name}.
+  StatusOr<std::string> StartInit(const InitRequest& request);
+  // GET /api/init: {"frame", "centre_source", "candidates": [{"energy", "merged",
+  // "rig_from_object" (12 numbers)}] best first}; no "frame" and no candidates before a search.
+  std::string InitJson() const;
+  // POST /api/init/save?candidate=K[&overwrite=1]: candidate K of the last search written as
+  // <seq>/init_pose.txt (atomically) when it was searched at frame 0, else as that frame's
+  // keyframe in <seq>/keyframes.txt (SetKeyframe): {"path", "frame", "command"} (the `bcot
+  // annotate` to run next). kInvalidInput for an unknown candidate, or when init_pose.txt
+  // exists and !overwrite.
+  StatusOr<std::string> SaveInitPose(int candidate, bool overwrite);
+
  private:
-  ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> annotation, const Mesh& mesh);
+  ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> annotation, const Mesh& mesh,
+                const InitOptions& init_options);
+
+  // The annotation shown now (null without one); replaced whole by a re-annotation.
+  std::shared_ptr<const ReviewAnnotation> Annotation() const;
 
   Sequence sequence_;
-  std::optional<ReviewAnnotation> annotation_;
+  mutable std::mutex annotation_mutex_;
+  std::shared_ptr<const ReviewAnnotation> annotation_;  // guarded by annotation_mutex_
   RayCaster caster_;
   std::unique_ptr<PoseEdits> edits_;  // with an annotation
   // The annotation's options (config.resolved.yaml), or why they could not be read.
   StatusOr<AnnotateOptions> annotate_options_ = Status::NotFound("no annotation");
-  std::mutex keyframes_mutex_;  // one keyframes.txt writer at a time
+  mutable std::mutex keyframes_mutex_;  // one keyframes.txt writer (or reader) at a time
+  const InitOptions init_options_;
+  mutable std::mutex init_mutex_;
+  std::optional<InitResult> init_result_;  // the last search, guarded by init_mutex_
+  int init_frame_ = 0;
+  ReviewJob job_;  // last member: destroyed (joined) first, while the rest still exists
 };
 
 }  // namespace bcot

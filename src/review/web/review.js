@@ -1,10 +1,11 @@
 // bcot review: the page of one sequence (and annotation). Plain JS, no framework, no network
-// beyond this server; the timeline and the trajectory are drawn as SVG by hand. The page marks its state on <body>
-// for tests and scripts: data-frame (shown frame), data-loaded-frame (frame whose images have
-// all loaded), data-ready (sequence and quality read).
+// beyond this server; the charts are dygraphs (Debian's libjs-dygraphs, served by bcot review).
+// The page marks its state on <body> for tests and scripts: data-frame (shown frame),
+// data-loaded-frame (frame whose images have all loaded), data-ready (sequence and quality read),
+// data-edits, data-keyframe, data-job (state of the last job of this page: running, done,
+// failed), data-init-candidates, data-init-saved.
 'use strict';
 
-const SVG = 'http://www.w3.org/2000/svg';
 const COLORS = ['#2a6', '#36c', '#c63', '#939', '#088', '#a80'];
 
 const state = {
@@ -15,6 +16,11 @@ const state = {
   frame: 0,
   playing: false,
   views: [],        // {camera, img, viewport, label, zoom, x, y}
+  charts: {},       // id -> Dygraph
+  clicks: {},       // initialisation: camera -> [x, y] (image pixels) on frame clickFrame
+  clickFrame: -1,
+  candidate: -1,    // initialisation: the candidate drawn on the views
+  init: null,       // /api/init after a search
 };
 
 function $(id) { return document.getElementById(id); }
@@ -26,8 +32,7 @@ async function getJson(url) {
 }
 
 function el(tag, attributes, text) {
-  const node = tag.startsWith('svg:') ? document.createElementNS(SVG, tag.slice(4))
-                                       : document.createElement(tag);
+  const node = document.createElement(tag);
   for (const [key, value] of Object.entries(attributes || {})) node.setAttribute(key, value);
   if (text !== undefined) node.textContent = text;
   return node;
@@ -39,6 +44,7 @@ function applyTransform(view) {
   view.img.style.transform = `translate(${view.x}px, ${view.y}px) scale(${view.zoom})`;
   view.viewport.classList.toggle('zoomed', view.zoom > 1);
   view.label.textContent = view.zoom > 1 ? `${view.zoom.toFixed(1)}×` : '';
+  placeMarker(view);
 }
 
 function addZoomPan(view) {
@@ -57,16 +63,23 @@ function addZoomPan(view) {
   }, {passive: false});
   let drag = null;
   viewport.addEventListener('pointerdown', (event) => {
-    drag = {x: event.clientX - view.x, y: event.clientY - view.y};
+    drag = {x: event.clientX - view.x, y: event.clientY - view.y, moved: false,
+            startX: event.clientX, startY: event.clientY};
     viewport.setPointerCapture(event.pointerId);
   });
   viewport.addEventListener('pointermove', (event) => {
-    if (!drag || view.zoom === 1) return;
+    if (!drag) return;
+    drag.moved ||= Math.hypot(event.clientX - drag.startX, event.clientY - drag.startY) > 3;
+    if (view.zoom === 1) return;
     view.x = event.clientX - drag.x;
     view.y = event.clientY - drag.y;
     applyTransform(view);
   });
-  viewport.addEventListener('pointerup', () => { drag = null; });
+  viewport.addEventListener('pointerup', (event) => {
+    // A click (no drag) on a view marks the object's centre for the initialisation.
+    if (drag && !drag.moved && !$('init-section').hidden) clickCentre(view, event);
+    drag = null;
+  });
   viewport.addEventListener('dblclick', () => {
     view.zoom = 1; view.x = view.y = 0;
     applyTransform(view);
@@ -82,10 +95,12 @@ function buildViews() {
     title.appendChild(label);
     const viewport = el('div', {class: 'viewport'});
     const img = el('img', {alt: camera.name, 'data-camera': camera.name, draggable: 'false'});
-    viewport.appendChild(img);
+    const marker = el('div', {class: 'marker', hidden: ''});
+    viewport.append(img, marker);
     box.append(title, viewport);
     container.appendChild(box);
-    const view = {camera: camera.name, img, viewport, label, zoom: 1, x: 0, y: 0, frame: -1};
+    const view = {camera: camera.name, img, viewport, label, marker, zoom: 1, x: 0, y: 0,
+                  frame: -1};
     img.addEventListener('load', imageDone);
     img.addEventListener('error', imageDone);
     addZoomPan(view);
@@ -114,12 +129,19 @@ function showFrame(frame) {
   $('frame-number').textContent = String(frame);
   $('slider').value = String(frame);
   delete document.body.dataset.loadedFrame;  // set again when the new images have loaded
+  const query = [];
+  if (state.mask) query.push('mask=1');
+  if (state.candidate >= 0 && state.init && state.init.frame === frame) {
+    query.push(`candidate=${state.candidate}`);
+  }
   for (const view of state.views) {
     view.frame = frame;
     view.img.src = `api/frame/${frame}/view/${encodeURIComponent(view.camera)}.jpg` +
-        (state.mask ? '?mask=1' : '');
+        (query.length ? '?' + query.join('&') : '');
   }
-  moveCursor();
+  redrawCharts();
+  if (state.clickFrame !== frame) state.clicks = {};  // clicks belong to one frame
+  if (!$('init-section').hidden) showClicks();
   loadDiagnostics(frame);
   loadPose(frame);
   // The address names the frame shown (#frame=N), so it can be shared or reopened there.
@@ -169,77 +191,76 @@ async function loadDiagnostics(frame) {
   }
 }
 
-// --- timeline -----------------------------------------------------------------------------------
+// --- charts (dygraphs) -------------------------------------------------------------------------
 
-const MARGIN = {left: 44, right: 10, top: 10, bottom: 24};
-
-function timelineScale(svg = $('timeline')) {
-  const width = svg.clientWidth || 800, height = svg.clientHeight || 220;
-  const count = state.sequence.num_frames;
-  const plotWidth = width - MARGIN.left - MARGIN.right;
-  const x = (frame) => MARGIN.left + (count > 1 ? frame / (count - 1) : 0.5) * plotWidth;
-  const toFrame = (px) => (px - MARGIN.left) / plotWidth * (count - 1);
-  return {width, height, x, toFrame, plotWidth};
+// Vertical lines across a chart's plot area at the given frames.
+function drawFrameLines(canvas, area, chart, frames, style, dash) {
+  canvas.save();
+  canvas.strokeStyle = style;
+  canvas.setLineDash(dash);
+  canvas.lineWidth = 1.5;
+  for (const frame of frames) {
+    const x = chart.toDomXCoord(frame);
+    canvas.beginPath();
+    canvas.moveTo(x, area.y);
+    canvas.lineTo(x, area.y + area.h);
+    canvas.stroke();
+  }
+  canvas.restore();
 }
 
-function drawTimeline() {
-  const svg = $('timeline');
-  svg.replaceChildren();
-  const quality = state.quality;
-  const scale = timelineScale();
-  const {width, height, x} = scale;
-  svg.setAttribute('viewBox', `0 0 ${width} ${height}`);
-  const bottom = height - MARGIN.bottom;
-  let max = quality.available ? quality.threshold_px * 1.5 : 1;
-  if (quality.available) {
-    for (const view of quality.views) {
-      for (const e of view.error_px) if (e !== null) max = Math.max(max, e);
-    }
+// Bands one frame wide behind a chart at the given frames.
+function drawFrameBands(canvas, area, chart, frames, style) {
+  if (!frames.length) return;
+  const half = Math.max(1, (chart.toDomXCoord(1) - chart.toDomXCoord(0)) / 2);
+  canvas.save();
+  canvas.fillStyle = style;
+  for (const frame of frames) {
+    canvas.fillRect(chart.toDomXCoord(frame) - half, area.y, 2 * half, area.h);
   }
-  const y = (value) => bottom - value / max * (bottom - MARGIN.top);
-  const half = Math.max(1, scale.plotWidth / Math.max(1, state.sequence.num_frames - 1) / 2);
-  if (quality.available) {
-    for (const view of quality.views) {
-      for (const frame of view.unverifiable_frames) {
-        svg.appendChild(el('svg:rect', {class: 'unverifiable', x: x(frame) - half, y: MARGIN.top,
-                                        width: 2 * half, height: bottom - MARGIN.top}));
-      }
-    }
-    for (const frame of quality.bad_frames) {
-      const band = el('svg:rect', {class: 'bad', x: x(frame) - half, y: MARGIN.top,
-                                   width: 2 * half, height: bottom - MARGIN.top,
-                                   'data-frame': frame});
-      band.appendChild(el('svg:title', {}, `frame ${frame}: bad`));
-      svg.appendChild(band);
-    }
-    svg.appendChild(el('svg:line', {class: 'threshold', x1: MARGIN.left, x2: width - MARGIN.right,
-                                    y1: y(quality.threshold_px), y2: y(quality.threshold_px)}));
-    quality.views.forEach((view, v) => {
-      let path = '';
-      view.error_px.forEach((e, frame) => {
-        if (e === null) return;
-        path += `${path && view.error_px[frame - 1] !== null ? 'L' : 'M'}${x(frame)},${y(e)}`;
-      });
-      svg.appendChild(el('svg:path', {d: path, fill: 'none', stroke: COLORS[v % COLORS.length],
-                                      'stroke-width': 1.5}));
-    });
+  canvas.restore();
+}
+
+// A chart of per-frame series: `columns` = [{name, values}], drawn over frame numbers; a click
+// shows the nearest frame, a drag zooms (double-click: all frames); `underlay(canvas, area,
+// chart)` draws behind the lines; the shown frame is a black line.
+function makeChart(id, columns, options, underlay) {
+  const rows = [];
+  for (let frame = 0; frame < state.sequence.num_frames; ++frame) {
+    rows.push([frame, ...columns.map((c) => c.values[frame] ?? null)]);
   }
-  // Axes: error ticks on the left, frame ticks below.
-  svg.appendChild(el('svg:line', {class: 'axis', x1: MARGIN.left, x2: MARGIN.left,
-                                  y1: MARGIN.top, y2: bottom}));
-  svg.appendChild(el('svg:line', {class: 'axis', x1: MARGIN.left, x2: width - MARGIN.right,
-                                  y1: bottom, y2: bottom}));
-  for (let i = 0; i <= 4; ++i) {
-    const value = max * i / 4;
-    svg.appendChild(el('svg:text', {x: 4, y: y(value) + 4}, value.toFixed(1)));
+  if (state.charts[id]) state.charts[id].destroy();
+  state.charts[id] = new Dygraph($(id), rows, Object.assign({
+    labels: ['frame', ...columns.map((c) => c.name)],
+    colors: columns.map((c, k) => COLORS[k % COLORS.length]),
+    strokeWidth: 1.5,
+    xlabel: 'frame',
+    labelsDiv: $(id + '-legend') || undefined,
+    labelsSeparateLines: false,
+    legend: 'always',
+    axes: {x: {ticker: frameTicks}},
+    // The frame under the pointer (dygraphs' own x is the last hovered point, unset when the
+    // pointer did not move over the chart before the click).
+    clickCallback: (event) => {
+      const chart = state.charts[id];
+      const rect = chart.graphDiv.getBoundingClientRect();
+      showFrame(chart.toDataXCoord(event.clientX - rect.left));
+    },
+    underlayCallback: (canvas, area, chart) => {
+      if (underlay) underlay(canvas, area, chart);
+      drawFrameLines(canvas, area, chart, [state.frame], '#000', []);
+    },
+  }, options));
+}
+
+// Ticks of a frame axis: whole frames at a round step, about one per 70 px.
+function frameTicks(min, max, pixels) {
+  const step = niceStep((max - min) / Math.max(1, Math.floor(pixels / 70)));
+  const ticks = [];
+  for (let frame = Math.ceil(min / step) * step; frame <= max; frame += step) {
+    ticks.push({v: frame, label: String(frame)});
   }
-  const count = state.sequence.num_frames;
-  const tickStep = niceStep(count / Math.max(2, Math.floor(width / 70)));
-  for (let frame = 0; frame < count; frame += tickStep) {
-    svg.appendChild(el('svg:text', {x: x(frame) - 4, y: height - 6}, String(frame)));
-  }
-  svg.appendChild(el('svg:line', {class: 'cursor', id: 'cursor', y1: MARGIN.top, y2: bottom}));
-  moveCursor();
+  return ticks;
 }
 
 function niceStep(raw) {
@@ -247,16 +268,48 @@ function niceStep(raw) {
   return steps.find((s) => s >= raw) || 10000;
 }
 
-function moveCursor() {
-  if (!state.sequence) return;
-  for (const [cursorId, svgId] of [['cursor', 'timeline'], ['rotation-cursor', 'rotation'],
-                                   ['translation-cursor', 'translation']]) {
-    const cursor = $(cursorId);
-    if (!cursor) continue;
-    const px = timelineScale($(svgId)).x(state.frame);
-    cursor.setAttribute('x1', px);
-    cursor.setAttribute('x2', px);
+function redrawCharts() {
+  for (const chart of Object.values(state.charts)) chart.updateOptions({});
+}
+
+// The page position (client coordinates) of `frame` on chart `id`, scrolled into view, at the
+// chart's middle height: for tests and scripts.
+function chartPoint(id, frame) {
+  const chart = state.charts[id];
+  $(id).scrollIntoView({block: 'center'});
+  const rect = $(id).getBoundingClientRect();
+  const area = chart.getArea();
+  return [rect.left + chart.toDomXCoord(frame), rect.top + area.y + area.h / 2];
+}
+
+function drawTimeline() {
+  const quality = state.quality;
+  if (!quality.available) {
+    $('timeline').hidden = true;
+    return;
   }
+  $('timeline').hidden = false;
+  let max = quality.threshold_px * 1.5;
+  for (const view of quality.views) {
+    for (const e of view.error_px) if (e !== null) max = Math.max(max, e);
+  }
+  const unverifiable = [...new Set(quality.views.flatMap((view) => view.unverifiable_frames))];
+  makeChart('timeline', quality.views.map((view) => ({name: view.name, values: view.error_px})),
+            {ylabel: 'px', valueRange: [0, max * 1.05], connectSeparatedPoints: false,
+             labelsDiv: $('legend')},
+            (canvas, area, chart) => {
+              drawFrameBands(canvas, area, chart, unverifiable, 'rgba(150,150,150,0.18)');
+              drawFrameBands(canvas, area, chart, quality.bad_frames, 'rgba(255,50,50,0.2)');
+              const y = chart.toDomYCoord(quality.threshold_px);
+              canvas.save();
+              canvas.strokeStyle = '#c00';
+              canvas.setLineDash([6, 4]);
+              canvas.beginPath();
+              canvas.moveTo(area.x, y);
+              canvas.lineTo(area.x + area.w, y);
+              canvas.stroke();
+              canvas.restore();
+            });
 }
 
 // --- editing --------------------------------------------------------------------------------
@@ -298,6 +351,10 @@ function bindEditing() {
     });
   }
   $('undo').addEventListener('click', () => edit(() => post(`api/frame/${state.frame}/undo`)));
+  $('reannotate').addEventListener('click', () => reannotate(
+      Number($('reannotate-first').value), Number($('reannotate-last').value)));
+  $('reannotate-here').addEventListener('click',
+      () => reannotate(state.frame, state.sequence.num_frames - 1));
   $('refine').addEventListener('click', () => {
     $('edit-status').textContent = `Refining frame ${state.frame} …`;
     edit(() => post(`api/frame/${state.frame}/refine`));
@@ -306,8 +363,11 @@ function bindEditing() {
     try {
       const written = await post(`api/frame/${state.frame}/keyframe`);
       document.body.dataset.keyframe = String(written.frame);
+      $('reannotate-first').value = String(written.first);
+      $('reannotate-last').value = String(written.last);
       $('edit-status').textContent = `Keyframe ${written.frame} written to ${written.path}. ` +
-          `Re-annotate around it with: ${written.command}`;
+          `Re-annotate frames ${written.first}–${written.last} around it below (or run: ` +
+          `${written.command}).`;
     } catch (error) {
       $('edit-status').textContent = String(error.message);
     }
@@ -320,49 +380,131 @@ async function loadPose(frame) {
   if (frame === state.frame) describeEdit(pose);
 }
 
-// --- trajectory -------------------------------------------------------------------------------
+// --- jobs: re-annotation and initialisation in the background --------------------------------
 
-// One chart of the trajectory: `series` = [{name, values}] over the frames, keyframes as dashed
-// vertical lines, a cursor at the shown frame; values are drawn against their common range.
-function drawSeries(svg, series, cursorId) {
-  svg.replaceChildren();
-  const scale = timelineScale(svg);
-  const {width, height, x} = scale;
-  svg.setAttribute('viewBox', `0 0 ${width} ${height}`);
-  const bottom = height - MARGIN.bottom;
-  let lo = Infinity, hi = -Infinity;
-  for (const s of series) {
-    for (const v of s.values) {
-      lo = Math.min(lo, v);
-      hi = Math.max(hi, v);
+// Starts a job with POST `url`, shows its progress until it ends, then calls `finished(job)`.
+async function runJob(url, finished) {
+  const section = $('job-section');
+  section.hidden = false;
+  try {
+    await post(url);
+  } catch (error) {
+    $('job-status').textContent = String(error.message);
+    document.body.dataset.job = 'failed';
+    return;
+  }
+  document.body.dataset.job = 'running';
+  for (;;) {
+    const job = await getJson('api/job');
+    $('job-progress').max = Math.max(1, job.total);
+    $('job-progress').value = job.done;
+    $('job-status').textContent = job.state === 'running' ?
+        `${job.name}: ${job.done} / ${job.total}` : `${job.name}: ${job.message}`;
+    if (job.state !== 'running') {
+      if (job.state === 'done') await finished(job);
+      document.body.dataset.job = job.state;
+      return;
     }
+    await new Promise((resolve) => setTimeout(resolve, 300));
   }
-  if (!(hi > lo)) {
-    lo -= 1;
-    hi += 1;
-  }
-  const y = (value) => bottom - (value - lo) / (hi - lo) * (bottom - MARGIN.top);
-  for (const frame of state.trajectory.keyframes) {
-    const line = el('svg:line', {class: 'keyframe', x1: x(frame), x2: x(frame), y1: MARGIN.top,
-                                 y2: bottom, 'data-frame': frame});
-    line.appendChild(el('svg:title', {}, `keyframe ${frame}`));
-    svg.appendChild(line);
-  }
-  series.forEach((s, k) => {
-    const path = s.values.map((v, frame) => `${frame ? 'L' : 'M'}${x(frame)},${y(v)}`).join('');
-    svg.appendChild(el('svg:path', {d: path, fill: 'none', stroke: COLORS[k % COLORS.length],
-                                    'stroke-width': 1.5, 'data-series': s.name}));
-  });
-  svg.appendChild(el('svg:line', {class: 'axis', x1: MARGIN.left, x2: MARGIN.left,
-                                  y1: MARGIN.top, y2: bottom}));
-  svg.appendChild(el('svg:line', {class: 'axis', x1: MARGIN.left, x2: width - MARGIN.right,
-                                  y1: bottom, y2: bottom}));
-  for (let i = 0; i <= 4; ++i) {
-    const value = lo + (hi - lo) * i / 4;
-    svg.appendChild(el('svg:text', {x: 4, y: y(value) + 4}, value.toFixed(1)));
-  }
-  svg.appendChild(el('svg:line', {class: 'cursor', id: cursorId, y1: MARGIN.top, y2: bottom}));
 }
+
+// Re-annotates frames first..last from the keyframes, then shows the new annotation.
+function reannotate(first, last) {
+  runJob(`api/reannotate?first=${first}&last=${last}`, async () => {
+    [state.quality, state.trajectory] =
+        await Promise.all([getJson('api/quality'), getJson('api/trajectory')]);
+    describeQuality();
+    drawTimeline();
+    drawTrajectory();
+    showFrame(state.frame);
+  });
+}
+
+// Initialisation: a click on a view marks the object's centre there (image pixels).
+function clickCentre(view, event) {
+  const rect = view.img.getBoundingClientRect();
+  if (!view.img.naturalWidth || !rect.width) return;
+  const x = (event.clientX - rect.left) / rect.width * view.img.naturalWidth;
+  const y = (event.clientY - rect.top) / rect.height * view.img.naturalHeight;
+  if (state.clickFrame !== state.frame) state.clicks = {};
+  state.clickFrame = state.frame;
+  state.clicks[view.camera] = [x, y];
+  showClicks();
+}
+
+function placeMarker(view) {
+  const click = state.clicks[view.camera];
+  view.marker.hidden = !click;
+  if (!click || !view.img.naturalWidth) return;
+  const scale = view.img.clientWidth / view.img.naturalWidth * view.zoom;
+  view.marker.style.left = `${view.x + click[0] * scale}px`;
+  view.marker.style.top = `${view.y + click[1] * scale}px`;
+}
+
+function showClicks() {
+  const entries = Object.entries(state.clicks);
+  $('init-frame').textContent = String(state.frame);
+  $('init-clicks').textContent = entries.length ?
+      entries.map(([camera, [x, y]]) => `${camera}: ${x.toFixed(1)}, ${y.toFixed(1)}`).join('; ') :
+      'no clicks yet';
+  $('init-find').disabled = entries.length === 0;
+  for (const view of state.views) placeMarker(view);
+}
+
+function findInitialPose() {
+  const clicks = Object.entries(state.clicks).map(([camera, [x, y]]) =>
+    `click=${encodeURIComponent(`${camera}:${x.toFixed(2)},${y.toFixed(2)}`)}`);
+  $('init-status').textContent = `Searching the pose of frame ${state.frame} …`;
+  runJob(`api/init?frame=${state.frame}&${clicks.join('&')}`, async (job) => {
+    state.init = await getJson('api/init');
+    $('init-status').textContent = job.message;
+    const list = $('init-candidates');
+    list.replaceChildren('candidates (magenta contour):');
+    state.init.candidates.forEach((candidate, k) => {
+      const label = el('label', {});
+      const radio = el('input', {type: 'radio', name: 'candidate', value: String(k),
+                                 'data-candidate': String(k)});
+      radio.addEventListener('change', () => chooseCandidate(k));
+      label.append(radio, ` ${k + 1}: energy ${candidate.energy.toFixed(4)}`);
+      list.appendChild(label);
+    });
+    document.body.dataset.initCandidates = String(state.init.candidates.length);
+    list.querySelector('input').checked = true;
+    chooseCandidate(0);
+  });
+}
+
+function chooseCandidate(k) {
+  state.candidate = k;
+  $('init-save').disabled = false;
+  showFrame(state.init.frame);
+}
+
+async function saveInitialPose() {
+  try {
+    const saved = await post(`api/init/save?candidate=${state.candidate}` +
+                             ($('init-overwrite').checked ? '&overwrite=1' : ''));
+    document.body.dataset.initSaved = saved.path;
+    $('init-status').textContent = `Frame ${saved.frame}'s pose written to ${saved.path}. ` +
+        `Annotate with: ${saved.command}`;
+  } catch (error) {
+    $('init-status').textContent = String(error.message);
+  }
+}
+
+function bindInitialisation() {
+  $('init-section').hidden = false;
+  $('init-clear').addEventListener('click', () => {
+    state.clicks = {};
+    showClicks();
+  });
+  $('init-find').addEventListener('click', findInitialPose);
+  $('init-save').addEventListener('click', saveInitialPose);
+  showClicks();
+}
+
+// --- trajectory -------------------------------------------------------------------------------
 
 function drawTrajectory() {
   const trajectory = state.trajectory;
@@ -370,37 +512,36 @@ function drawTrajectory() {
   if (!trajectory.available) return;
   const centre = trajectory.centre_mm;
   const relative = (values) => values.map((v) => v - values[0]);
-  drawSeries($('rotation'), [{name: 'rotation', values: trajectory.rotation_deg}],
-             'rotation-cursor');
-  drawSeries($('translation'), [{name: 'x', values: relative(centre.x)},
-                                {name: 'y', values: relative(centre.y)},
-                                {name: 'z', values: relative(centre.z)}],
-             'translation-cursor');
-  const keyframes = trajectory.keyframes.length ?
+  const keyframes = (canvas, area, chart) =>
+    drawFrameLines(canvas, area, chart, trajectory.keyframes, '#a40', [4, 3]);
+  makeChart('rotation', [{name: 'rotation (deg)', values: trajectory.rotation_deg}],
+            {ylabel: 'deg'}, keyframes);
+  makeChart('translation', [{name: 'x (mm)', values: relative(centre.x)},
+                            {name: 'y (mm)', values: relative(centre.y)},
+                            {name: 'z (mm)', values: relative(centre.z)}],
+            {ylabel: 'mm'}, keyframes);
+  const list = trajectory.keyframes.length ?
       `keyframes (dashed): ${trajectory.keyframes.join(', ')}` : 'no keyframes';
   $('trajectory-note').textContent = 'Rotation from frame 0 (deg) and the object centre\'s ' +
-      'displacement from frame 0 along the rig axes (mm; x, y, z in the colours of the first ' +
-      `three views); ${keyframes}. Click to jump to a frame.`;
-  moveCursor();
+      `displacement from frame 0 along the rig axes (mm); ${list}. Click to jump to a frame, ` +
+      'drag to zoom, double-click for all frames.';
 }
 
 function describeQuality() {
   const quality = state.quality;
   const note = $('timeline-note');
-  const legend = $('legend');
   if (!quality.available) {
-    note.textContent = 'No quality.json in the annotation: no error timeline.';
+    note.textContent = state.sequence.annotation ?
+        'No quality.json in the annotation: no error timeline.' :
+        'No annotation: no error timeline.';
     $('bad-frames').textContent = 'unknown (no quality.json)';
     return;
   }
   note.textContent = `The ${quality.statistic} reprojection error (px) per view; dashed: the ` +
       `rejection threshold ${quality.threshold_px} px; red bands: bad frames; grey: cannot ` +
-      'be told. Click to jump to a frame.';
-  quality.views.forEach((view, v) => {
-    const item = el('span', {}, `— ${view.name} (${view.bad_frames.length} bad)`);
-    item.style.color = COLORS[v % COLORS.length];
-    legend.appendChild(item);
-  });
+      'be told. Click to jump to a frame, drag to zoom, double-click for all frames. Bad ' +
+      'frames per view: ' +
+      quality.views.map((view) => `${view.name} ${view.bad_frames.length}`).join(', ') + '.';
   const list = $('bad-frames');
   list.replaceChildren();
   if (quality.bad_frames.length === 0) list.textContent = 'none';
@@ -418,10 +559,6 @@ function bindControls() {
   $('prev').addEventListener('click', () => step(-1));
   $('next').addEventListener('click', () => step(1));
   $('play').addEventListener('click', () => setPlaying(!state.playing));
-  $('timeline').addEventListener('click', (event) => {
-    const rect = $('timeline').getBoundingClientRect();
-    showFrame(timelineScale().toFrame(event.clientX - rect.left));
-  });
   document.addEventListener('keydown', (event) => {
     if (event.target.tagName === 'INPUT' && event.key !== ' ') return;
     const moves = {ArrowLeft: -1, ArrowRight: 1, PageUp: -10, PageDown: 10};
@@ -438,19 +575,9 @@ function bindControls() {
     }
     event.preventDefault();
   });
-  for (const id of ['rotation', 'translation']) {
-    $(id).addEventListener('click', (event) => {
-      const rect = $(id).getBoundingClientRect();
-      showFrame(timelineScale($(id)).toFrame(event.clientX - rect.left));
-    });
-  }
   $('mask').addEventListener('change', (event) => {
     state.mask = event.target.checked;
     showFrame(state.frame);
-  });
-  window.addEventListener('resize', () => {
-    drawTimeline();
-    drawTrajectory();
   });
 }
 
@@ -477,6 +604,7 @@ async function start() {
   $('mask-label').hidden = !sequence.contour;
   $('edit-section').hidden = !sequence.contour;
   if (sequence.contour) bindEditing();
+  if (!sequence.contour) bindInitialisation();
   showFrame(frameFromAddress());
   document.body.dataset.ready = 'yes';
 }
