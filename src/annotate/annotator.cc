@@ -10,12 +10,14 @@
 #include <map>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <utility>
 
 #include "bcot/annotate/done_file.h"
 #include "bcot/annotate/output_dir.h"
+#include "bcot/annotate/output_lock.h"
 #include "bcot/annotate/pose_scorer.h"
 #include "bcot/annotate/splice.h"
 #include "bcot/annotate/tracking_plan.h"
@@ -520,6 +522,11 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
                                                 const AnnotateInputs& inputs,
                                                 const AnnotateProgress& progress) {
   if (!inputs.frames.empty()) {
+    // A splice needs a finished annotation (SpliceFrames says so when there is none).
+    std::optional<OutputLock> lock;
+    if (std::filesystem::is_directory(out_dir)) {
+      BCOT_ASSIGN_OR_RETURN(lock, OutputLock::Acquire(out_dir));
+    }
     return SpliceFrames(sequence_dir, out_dir, options, inputs, progress);
   }
   // An absolute path, so DONE lets `bcot report` find the images again.
@@ -532,6 +539,7 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
   BCOT_RETURN_IF_ERROR(
       CheckAnnotationOutputDir(out_dir, sequence.dir, sequence.rig, inputs.overwrite));
   BCOT_RETURN_IF_ERROR(CheckWritableDirectory(out_dir));
+  BCOT_ASSIGN_OR_RETURN(const OutputLock lock, OutputLock::Acquire(out_dir));
   // A directory holding DONE is complete; take DONE away before anything in it changes.
   BCOT_RETURN_IF_ERROR(RemoveDoneFile(out_dir));
   BCOT_ASSIGN_OR_RETURN(const Mesh mesh,

@@ -7,6 +7,7 @@
 #include <set>
 #include <vector>
 
+#include "bcot/annotate/output_lock.h"
 #include "bcot/core/annotation_poses.h"
 
 namespace bcot {
@@ -54,9 +55,9 @@ Status CheckAnnotationOutputDir(const std::string& out_dir, const std::string& s
   }
   if (overwrite || !fs::is_directory(out_dir, error)) return Status::Ok();
   const std::set<std::string> files = {
-      "DONE",        kRigFromObjectFileName, "frames.csv", "config.resolved.yaml", "quality.json",
-      "quality.csv", "report.html",          "batch.log",  ".batch_config.yaml",   "summary.json",
-      "summary.html"};
+      "DONE",         kRigFromObjectFileName, "frames.csv", "config.resolved.yaml", "quality.json",
+      "quality.csv",  "report.html",          "batch.log",  ".batch_config.yaml",   "summary.json",
+      "summary.html", kOutputLockFileName};
   std::set<std::string> cameras;
   for (const RigCamera& camera : rig.cameras()) cameras.insert(camera.camera.name);
   std::string foreign = FirstForeignEntry(out_dir, files, cameras);

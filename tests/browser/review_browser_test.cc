@@ -2,8 +2,9 @@
 // protocol by tests/browser/review_page.py (Python's standard library only): on a tiny annotated
 // `bcot synth` sequence, clicking the timeline at a chosen frame shows that frame with every
 // view's image loaded, → steps on, a listed bad frame (if any) is shown when clicked, and on an
-// annotation the trajectory, the mask, a nudge set as a keyframe and the re-annotation around it
-// work; on a sequence without init_pose.txt, two clicks give an initial pose saved by the page.
+// annotation the trajectory, the mask, a nudge set as a keyframe, the re-annotation around it
+// and a drag and the wheel as edits work; on a sequence without init_pose.txt, two clicks give
+// an initial pose saved by the page.
 // Skipped without Chromium or Python. Screenshots are kept in the test's temporary directory
 // while it runs; set BCOT_TEST_ARTIFACTS to a directory to keep them. CTest label: browser.
 #include <fmt/format.h>
@@ -64,6 +65,8 @@ class ReviewBrowserTest : public ::testing::Test {
     if (!annotation.empty()) {
       EXPECT_THAT(output, HasSubstr("ok: nudged frame 0 and set it as keyframe 0")) << output;
       EXPECT_THAT(output, HasSubstr("ok: re-annotated frames 0:")) << output;
+      EXPECT_THAT(output, HasSubstr("ok: a drag and the wheel on a view moved the pose"))
+          << output;
       // The re-annotation finished its files: DONE again, poses for every frame.
       EXPECT_TRUE(std::filesystem::exists(annotation + "/DONE"));
       const StatusOr<std::vector<Eigen::Isometry3d>> poses =

@@ -10,7 +10,8 @@ page then shows FRAME (number, slider, every view's image loaded at the camera's
 moves to FRAME + 1 and, when the page lists bad frames, clicking the first one shows it; with an
 annotation, the trajectory charts hold their series, a click on the rotation chart shows frame
 0, the mask box loads the tinted images, a nudge of frame 0 set as its keyframe writes
-keyframes.txt, and re-annotating around it from the page runs to the end and drops the edit.
+keyframes.txt, re-annotating around it from the page runs to the end and drops the edit, and
+with "drag edits the pose" a drag and the wheel on a view move the pose.
 With clicks (last argument; image pixels of frame 0), on a sequence without annotation: the
 clicks on the views, "find pose", the first candidate drawn and saved as init_pose.txt.
 Any console message or script exception is a failure (the page logs nothing). Screenshots go to
@@ -118,6 +119,22 @@ class Chromium:
         for kind in ('mousePressed', 'mouseReleased'):
             self.send('Input.dispatchMouseEvent', {'type': kind, 'x': x, 'y': y,
                                                    'button': 'left', 'clickCount': 1})
+
+    def drag(self, x0, y0, x1, y1):
+        """Presses at (x0, y0), moves to (x1, y1) in steps and releases there."""
+        self.send('Input.dispatchMouseEvent', {'type': 'mouseMoved', 'x': x0, 'y': y0})
+        self.send('Input.dispatchMouseEvent', {'type': 'mousePressed', 'x': x0, 'y': y0,
+                                               'button': 'left', 'clickCount': 1})
+        for k in range(1, 6):
+            self.send('Input.dispatchMouseEvent', {
+                'type': 'mouseMoved', 'x': x0 + (x1 - x0) * k / 5, 'y': y0 + (y1 - y0) * k / 5,
+                'button': 'left', 'buttons': 1})
+        self.send('Input.dispatchMouseEvent', {'type': 'mouseReleased', 'x': x1, 'y': y1,
+                                               'button': 'left', 'clickCount': 1})
+
+    def wheel(self, x, y, delta_y):
+        self.send('Input.dispatchMouseEvent', {'type': 'mouseWheel', 'x': x, 'y': y,
+                                               'deltaX': 0, 'deltaY': delta_y})
 
     def key(self, key, code):
         for kind in ('rawKeyDown', 'keyUp'):
@@ -283,6 +300,26 @@ def run(binary, url, frame, shots, clicks):
                 expect_frame(browser, 0)
                 browser.screenshot(os.path.join(shots, 'review_reannotated.png'))
                 print(f'ok: re-annotated frames {span[0]}:{span[1]} from the page: {status}')
+
+                # With "drag edits the pose": a drag on cam0 moves the model, the wheel its depth.
+                click_element(browser, '#edit-drag')
+                before = browser.evaluate("fetch('api/frame/0/pose').then((r) => r.json())")
+                x, y = browser.evaluate("""(() => {
+                    const img = document.querySelector('#views img');
+                    img.scrollIntoView({block: 'center'});
+                    const rect = img.getBoundingClientRect();
+                    return [rect.left + rect.width / 2, rect.top + rect.height / 2];
+                })()""")
+                browser.drag(x, y, x + 40, y)
+                browser.wait_for("document.body.dataset.edits === '1'", 'the drag edit')
+                browser.wheel(x, y, 100)
+                browser.wait_for("document.body.dataset.edits === '2'", 'the wheel edit')
+                after = browser.evaluate("fetch('api/frame/0/pose').then((r) => r.json())")
+                moved = [a - b for a, b in zip(after['rig_from_object'][9:],
+                                               before['rig_from_object'][9:])]
+                assert any(abs(m) > 0.1 for m in moved), f'the pose did not move: {moved}'
+                expect_frame(browser, 0)
+                print(f'ok: a drag and the wheel on a view moved the pose by {moved} mm')
             browser.screenshot(os.path.join(shots, 'review_end.png'))
             problems = browser.problems()
             assert not problems, f'console messages or exceptions: {problems}'

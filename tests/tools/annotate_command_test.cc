@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "bcot/annotate/output_lock.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/status.h"
@@ -107,6 +108,30 @@ TEST_F(AnnotateCommandTest, OutMustBeAnAnnotationDirectoryUnlessOverwrite) {
     EXPECT_THAT(output, HasSubstr("is the sequence directory"));
   }
   EXPECT_FALSE(std::filesystem::exists(dir_->File("seq/rig_from_object.txt")));
+}
+
+// A run into an annotation that another run is writing (its lock held) is refused at once, the
+// other run's files untouched; once the lock is free, the run goes through.
+TEST_F(AnnotateCommandTest, AnAnnotationBeingWrittenIsRefused) {
+  test::TempDir out;
+  const std::string run = Annotate(dir_->File("seq") + " --out " + out.File("ann") + " --config " +
+                                   test::SourcePath("configs/track.yaml"));
+  std::string output;
+  ASSERT_EQ(test::RunCommand(run, &output), 0) << output;
+  const StatusOr<std::string> poses = ReadTextFile(out.File("ann/rig_from_object.txt"));
+  ASSERT_TRUE(poses.ok());
+  {
+    const StatusOr<OutputLock> held = OutputLock::Acquire(out.File("ann"));
+    ASSERT_TRUE(held.ok()) << held.status().message();
+    for (const std::string& extra : {std::string(), std::string(" --frames 1:2")}) {
+      EXPECT_EQ(test::RunCommand(run + extra + " --set frame.rounds=2", &output), 1) << extra;
+      EXPECT_EQ(test::CountLines(output), 1) << output;
+      EXPECT_THAT(output, HasSubstr("another bcot run is writing this annotation"));
+    }
+    EXPECT_TRUE(std::filesystem::exists(out.File("ann/DONE")));
+    EXPECT_EQ(*ReadTextFile(out.File("ann/rig_from_object.txt")), *poses);
+  }
+  EXPECT_EQ(test::RunCommand(run + " --set frame.rounds=2", &output), 0) << output;
 }
 
 // Progress into a pipe (a log): whole lines, no carriage returns. Every output header carries

@@ -2,8 +2,8 @@
 // only what bcot writes there (the output contract, docs/architecture.md): DONE,
 // rig_from_object.txt, <camera>/pose.txt, frames.csv, config.resolved.yaml, quality.json,
 // quality.csv, report.html, batch.log and .batch_config.yaml (bcot batch), summary.json and
-// summary.html (bcot batch / report, when the batch root is itself a sequence), and the hidden
-// temp files of atomic writes. So an earlier annotation, resumed, reprocessed with another config
+// summary.html (bcot batch / report, when the batch root is itself a sequence), .bcot.lock
+// (output_lock.h) and the hidden temp files of atomic writes. So an earlier annotation, resumed, reprocessed with another config
 // or spliced
 // (`--frames`), is written over without a flag, while a directory that holds anything else
 // (a user's files, another tool's output, the images) is refused unless the user says

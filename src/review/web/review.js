@@ -47,10 +47,36 @@ function applyTransform(view) {
   placeMarker(view);
 }
 
+// Whether drags and the wheel on the views edit the pose ("drag edits the pose"), not the
+// zoom and pan.
+function dragEdits() {
+  return !$('edit-section').hidden && $('edit-drag').checked;
+}
+
+// A drag on `view` by (dx, dy) client pixels as an edit of the frame's pose in that view: a move
+// of the object's centre by as many image pixels, or with shift a turn about the view's axes
+// (0.25° per image pixel) that carries the object's near side along with the pointer.
+function dragEdit(view, dx, dy, turn) {
+  const scale = view.img.naturalWidth / (view.img.clientWidth * view.zoom);  // image px per px
+  const [u, v] = [dx * scale, dy * scale];
+  const change = turn ? `ry=${(-0.25 * u).toFixed(3)}&rx=${(0.25 * v).toFixed(3)}`
+                      : `dx=${u.toFixed(3)}&dy=${v.toFixed(3)}`;
+  edit(() => post(`api/frame/${state.frame}/nudge?camera=${encodeURIComponent(view.camera)}` +
+                  `&${change}`));
+}
+
 function addZoomPan(view) {
   const viewport = view.viewport;
   viewport.addEventListener('wheel', (event) => {
     event.preventDefault();
+    if (dragEdits()) {  // nearer (wheel up) or farther by one step (mm)
+      const dz = Math.sign(event.deltaY) * Number($('edit-step').value);
+      if (dz) {
+        edit(() => post(`api/frame/${state.frame}/nudge?camera=` +
+                        `${encodeURIComponent(view.camera)}&dz=${dz}`));
+      }
+      return;
+    }
     const rect = viewport.getBoundingClientRect();
     const px = event.clientX - rect.left, py = event.clientY - rect.top;
     const zoom = Math.min(8, Math.max(1, view.zoom * (event.deltaY < 0 ? 1.25 : 0.8)));
@@ -70,7 +96,7 @@ function addZoomPan(view) {
   viewport.addEventListener('pointermove', (event) => {
     if (!drag) return;
     drag.moved ||= Math.hypot(event.clientX - drag.startX, event.clientY - drag.startY) > 3;
-    if (view.zoom === 1) return;
+    if (view.zoom === 1 || dragEdits()) return;
     view.x = event.clientX - drag.x;
     view.y = event.clientY - drag.y;
     applyTransform(view);
@@ -78,6 +104,9 @@ function addZoomPan(view) {
   viewport.addEventListener('pointerup', (event) => {
     // A click (no drag) on a view marks the object's centre for the initialisation.
     if (drag && !drag.moved && !$('init-section').hidden) clickCentre(view, event);
+    if (drag && drag.moved && dragEdits()) {
+      dragEdit(view, event.clientX - drag.startX, event.clientY - drag.startY, event.shiftKey);
+    }
     drag = null;
   });
   viewport.addEventListener('dblclick', () => {
