@@ -81,11 +81,10 @@ void AddReviewCommand(CLI::App& app, int* exit_code) {
   command->add_option("sequence", flags->sequence_dir, "Sequence directory")
       ->required()
       ->check(CLI::ExistingDirectory);
-  command
-      ->add_option("--annotation", flags->annotation_dir,
-                   "Annotation directory of the sequence (output of `bcot annotate`); without "
-                   "it the frames are shown without contour")
-      ->check(CLI::ExistingDirectory);
+  command->add_option("--annotation", flags->annotation_dir,
+                      "Annotation directory of the sequence (output of `bcot annotate`); without "
+                      "it the frames are shown without contour. A new or empty directory is "
+                      "where the page's \"annotate\" writes one (with the --config options)");
   command
       ->add_option("--host", flags->options.host,
                    "Address to listen on; a non-loopback address (e.g. 0.0.0.0) also accepts "

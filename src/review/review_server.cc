@@ -179,6 +179,9 @@ void ReviewServer::Impl::AddRoutes() {
         if (!last.ok()) return SetError(last.status(), response);
         Respond(session.StartReannotate(*first, *last), response);
       });
+  server.Post("/api/annotate", [this](const httplib::Request&, httplib::Response& response) {
+    Respond(session.StartAnnotate(), response);
+  });
   server.Get("/api/init", [this](const httplib::Request&, httplib::Response& response) {
     SetJson(session.InitJson(), response);
   });

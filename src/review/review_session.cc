@@ -69,6 +69,23 @@ bool IsFile(const std::string& path) {
   return std::filesystem::is_regular_file(path, error);
 }
 
+// A directory that does not exist or holds nothing (where an annotation can be written).
+bool IsEmptyOrAbsent(const std::string& dir) {
+  std::error_code error;
+  if (!std::filesystem::exists(dir, error)) return true;
+  return std::filesystem::is_directory(dir, error) && std::filesystem::is_empty(dir, error);
+}
+
+// "the sequence is accepted (worst 0.29 px)", or rejected with its first reason.
+std::string Verdict(const AnnotationOutcome& outcome) {
+  const QualityVerdict& verdict = outcome.verdict;
+  if (!verdict.accepted && !verdict.reasons.empty()) {
+    return "the sequence is rejected: " + verdict.reasons.front();
+  }
+  return fmt::format("the sequence is {} (worst {:.2f} px)",
+                     verdict.accepted ? "accepted" : "rejected", verdict.worst_px);
+}
+
 Status NoAnnotationToEdit() {
   return Status::InvalidInput("no annotation to edit (bcot review --annotation)");
 }
@@ -76,37 +93,52 @@ Status NoAnnotationToEdit() {
 }  // namespace
 
 ReviewSession::ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> annotation,
-                             const Mesh& mesh, const InitOptions& init_options)
-    : sequence_(std::move(sequence)), caster_(mesh), init_options_(init_options) {
-  if (annotation) {
-    edits_ = std::make_unique<PoseEdits>(annotation->rig_from_object);
-    annotate_options_ = ReadAnnotateOptions(annotation->dir + "/config.resolved.yaml", {});
-    annotation_ = std::make_shared<const ReviewAnnotation>(std::move(*annotation));
-  }
+                             std::string annotation_target, const Mesh& mesh,
+                             const InitOptions& init_options)
+    : sequence_(std::move(sequence)),
+      annotation_target_(std::move(annotation_target)),
+      caster_(mesh),
+      init_options_(init_options) {
+  if (annotation) shown_ = NewShown(std::move(*annotation));
 }
 
 ReviewSession::~ReviewSession() = default;
 
-std::shared_ptr<const ReviewAnnotation> ReviewSession::Annotation() const {
-  std::lock_guard<std::mutex> lock(annotation_mutex_);
-  return annotation_;
+std::shared_ptr<const ReviewSession::ShownAnnotation> ReviewSession::NewShown(
+    ReviewAnnotation files) {
+  auto shown = std::make_shared<ShownAnnotation>();
+  shown->edits = std::make_shared<PoseEdits>(files.rig_from_object);
+  shown->options = ReadAnnotateOptions(files.dir + "/config.resolved.yaml", {});
+  shown->files = std::move(files);
+  return shown;
+}
+
+std::shared_ptr<const ReviewSession::ShownAnnotation> ReviewSession::Shown() const {
+  std::lock_guard<std::mutex> lock(shown_mutex_);
+  return shown_;
+}
+
+void ReviewSession::Show(std::shared_ptr<const ShownAnnotation> shown) {
+  std::lock_guard<std::mutex> lock(shown_mutex_);
+  shown_ = std::move(shown);
 }
 
 StatusOr<std::string> ReviewSession::Refine(int frame) {
-  if (!edits_) return NoAnnotationToEdit();
-  if (!annotate_options_.ok()) {
+  const std::shared_ptr<const ShownAnnotation> shown = Shown();
+  if (!shown) return NoAnnotationToEdit();
+  if (!shown->options.ok()) {
     return Status::InvalidInput("refine needs the annotation's options: " +
-                                annotate_options_.status().message());
+                                shown->options.status().message());
   }
-  BCOT_ASSIGN_OR_RETURN(
-      const RefinedFrame refined,
-      RefineFrame(sequence_, caster_, *annotate_options_, frame, edits_->Pose(frame)));
+  PoseEdits& edits = *shown->edits;
+  BCOT_ASSIGN_OR_RETURN(const RefinedFrame refined,
+                        RefineFrame(sequence_, caster_, *shown->options, frame, edits.Pose(frame)));
   if (!refined.summary.usable()) {
     return Status::InvalidInput(fmt::format(
         "frame {}: the solve failed ({}); the pose is unchanged", frame, refined.summary.message));
   }
-  edits_->Push(frame, refined.rig_from_object);
-  ordered_json json = PoseObject(*edits_, frame);
+  edits.Push(frame, refined.rig_from_object);
+  ordered_json json = PoseObject(edits, frame);
   json["termination"] = FrameTerminationName(refined.summary.termination);
   json["rounds"] = refined.summary.rounds;
   return json.dump();
@@ -114,45 +146,49 @@ StatusOr<std::string> ReviewSession::Refine(int frame) {
 
 StatusOr<std::string> ReviewSession::PoseJson(int frame) const {
   BCOT_CHECK(frame >= 0 && frame < sequence_.num_frames);
-  if (!edits_) return NoAnnotationToEdit();
-  return PoseObject(*edits_, frame).dump();
+  const std::shared_ptr<const ShownAnnotation> shown = Shown();
+  if (!shown) return NoAnnotationToEdit();
+  return PoseObject(*shown->edits, frame).dump();
 }
 
 StatusOr<std::string> ReviewSession::Nudge(const ReviewTarget& target, const PoseNudge& nudge) {
-  if (!edits_) return NoAnnotationToEdit();
+  const std::shared_ptr<const ShownAnnotation> shown = Shown();
+  if (!shown) return NoAnnotationToEdit();
   BCOT_ASSIGN_OR_RETURN(const Eigen::Isometry3d nudged,
-                        NudgePose(edits_->Pose(target.frame), caster_.mesh().bbox_center(),
+                        NudgePose(shown->edits->Pose(target.frame), caster_.mesh().bbox_center(),
                                   sequence_.rig[target.camera], nudge));
-  edits_->Push(target.frame, nudged);
-  return PoseJson(target.frame);
+  shown->edits->Push(target.frame, nudged);
+  return PoseObject(*shown->edits, target.frame).dump();
 }
 
 StatusOr<std::string> ReviewSession::Undo(int frame) {
-  if (!edits_) return NoAnnotationToEdit();
-  if (!edits_->Undo(frame)) {
+  const std::shared_ptr<const ShownAnnotation> shown = Shown();
+  if (!shown) return NoAnnotationToEdit();
+  if (!shown->edits->Undo(frame)) {
     return Status::InvalidInput(fmt::format("frame {} has no edit to undo", frame));
   }
-  return PoseJson(frame);
+  return PoseObject(*shown->edits, frame).dump();
 }
 
 StatusOr<std::string> ReviewSession::SetKeyframeJson(int frame) {
-  if (!edits_) return NoAnnotationToEdit();
+  const std::shared_ptr<const ShownAnnotation> shown = Shown();
+  if (!shown) return NoAnnotationToEdit();
   const std::string path = sequence_.dir + "/keyframes.txt";
   {
     std::lock_guard<std::mutex> lock(keyframes_mutex_);
-    BCOT_RETURN_IF_ERROR(SetKeyframe(path, frame, edits_->Pose(frame), sequence_.num_frames));
+    BCOT_RETURN_IF_ERROR(SetKeyframe(path, frame, shown->edits->Pose(frame), sequence_.num_frames));
   }
   int first = frame, last = frame;
-  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
-  if (annotation->quality) {
-    const std::vector<int> bad = annotation->quality->BadFrames();
+  const ReviewAnnotation& annotation = shown->files;
+  if (annotation.quality) {
+    const std::vector<int> bad = annotation.quality->BadFrames();
     const auto is_bad = [&](int f) { return std::binary_search(bad.begin(), bad.end(), f); };
     while (first > 0 && is_bad(first - 1)) --first;
     while (last + 1 < sequence_.num_frames && is_bad(last + 1)) ++last;
   }
   const std::string command =
       fmt::format("bcot annotate {} --out {} --config {}/config.resolved.yaml --frames {}:{}",
-                  sequence_.dir, annotation->dir, annotation->dir, first, last);
+                  sequence_.dir, annotation.dir, annotation.dir, first, last);
   return ordered_json{
       {"path", path}, {"frame", frame}, {"first", first}, {"last", last}, {"command", command}}
       .dump();
@@ -164,13 +200,16 @@ StatusOr<std::unique_ptr<ReviewSession>> ReviewSession::Load(const std::string& 
   BCOT_RETURN_IF_ERROR(init_options.Validate());
   BCOT_ASSIGN_OR_RETURN(Sequence sequence, LoadSequence(sequence_dir, /*require_init_pose=*/false));
   std::optional<ReviewAnnotation> annotation;
-  if (!annotation_dir.empty()) {
+  std::string annotation_target;
+  if (IsEmptyOrAbsent(annotation_dir)) {
+    annotation_target = annotation_dir;  // "" without one
+  } else {
     BCOT_ASSIGN_OR_RETURN(annotation, LoadReviewAnnotation(annotation_dir, sequence.num_frames));
   }
   BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
                         Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
-  return std::unique_ptr<ReviewSession>(
-      new ReviewSession(std::move(sequence), std::move(annotation), mesh, init_options));
+  return std::unique_ptr<ReviewSession>(new ReviewSession(
+      std::move(sequence), std::move(annotation), annotation_target, mesh, init_options));
 }
 
 StatusOr<ReviewTarget> ReviewSession::Resolve(const std::string& frame_text,
@@ -179,12 +218,15 @@ StatusOr<ReviewTarget> ReviewSession::Resolve(const std::string& frame_text,
 }
 
 std::string ReviewSession::SequenceJson() const {
-  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
+  const std::shared_ptr<const ShownAnnotation> shown = Shown();
+  const bool can_annotate = !shown && !annotation_target_.empty();
   ordered_json json = {{"sequence", sequence_.dir},
                        {"num_frames", sequence_.num_frames},
-                       {"annotation", annotation ? ordered_json(annotation->dir) : nullptr},
-                       {"contour", annotation != nullptr},
+                       {"annotation", shown ? ordered_json(shown->files.dir) : nullptr},
+                       {"contour", shown != nullptr},
                        {"init_pose", IsFile(sequence_.dir + "/init_pose.txt")},
+                       {"annotation_target",
+                        can_annotate ? ordered_json(annotation_target_) : ordered_json(nullptr)},
                        {"cameras", ordered_json::array()}};
   for (const RigCamera& camera : sequence_.rig.cameras()) {
     json["cameras"].push_back({{"name", camera.camera.name},
@@ -195,18 +237,18 @@ std::string ReviewSession::SequenceJson() const {
 }
 
 std::string ReviewSession::QualityJson() const {
-  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
-  if (!annotation || !annotation->quality) return ordered_json{{"available", false}}.dump();
-  return TimelineJson(*annotation->quality).dump();
+  const std::shared_ptr<const ShownAnnotation> shown = Shown();
+  if (!shown || !shown->files.quality) return ordered_json{{"available", false}}.dump();
+  return TimelineJson(*shown->files.quality).dump();
 }
 
 std::string ReviewSession::DiagnosticsJson(int frame) const {
   BCOT_CHECK(frame >= 0 && frame < sequence_.num_frames);
-  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
-  if (!annotation || !annotation->diagnostics) {
+  const std::shared_ptr<const ShownAnnotation> shown = Shown();
+  if (!shown || !shown->files.diagnostics) {
     return ordered_json{{"available", false}, {"frame", frame}}.dump();
   }
-  const FrameDiagnostics& diagnostics = *annotation->diagnostics;
+  const FrameDiagnostics& diagnostics = *shown->files.diagnostics;
   ordered_json values;
   for (size_t c = 0; c < diagnostics.columns.size(); ++c) {
     values[diagnostics.columns[c]] = diagnostics.rows[frame][c];
@@ -215,9 +257,9 @@ std::string ReviewSession::DiagnosticsJson(int frame) const {
 }
 
 std::string ReviewSession::TrajectoryJson() const {
-  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
-  if (!annotation) return ordered_json{{"available", false}}.dump();
-  const std::vector<Eigen::Isometry3d>& poses = annotation->rig_from_object;
+  const std::shared_ptr<const ShownAnnotation> shown = Shown();
+  if (!shown) return ordered_json{{"available", false}}.dump();
+  const std::vector<Eigen::Isometry3d>& poses = shown->files.rig_from_object;
   const Eigen::Vector3d centre = caster_.mesh().bbox_center();
   ordered_json rotation = ordered_json::array(), x = ordered_json::array(),
                y = ordered_json::array(), z = ordered_json::array();
@@ -264,10 +306,10 @@ StatusOr<std::vector<unsigned char>> ReviewSession::ViewJpeg(const ReviewTarget&
       candidate_pose = init_result_->candidates[candidate].rig_from_object;
     }
   }
-  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
-  if (annotation) {
+  const std::shared_ptr<const ShownAnnotation> shown = Shown();
+  if (shown) {
     const Eigen::Isometry3d cam_from_object =
-        camera.cam_from_rig * annotation->rig_from_object[target.frame];
+        camera.cam_from_rig * shown->files.rig_from_object[target.frame];
     if (mask) {
       RenderOptions options;
       options.depth = options.normal_in_cam = options.point_in_object = options.triangle_id = false;
@@ -285,10 +327,10 @@ StatusOr<std::vector<unsigned char>> ReviewSession::ViewJpeg(const ReviewTarget&
     }
     DrawContour(caster_.ExtractContour(camera.camera, cam_from_object), cv::Scalar(0, 255, 0),
                 &image);
-    if (edits_->Depth(target.frame) > 0) {
-      DrawContour(
-          caster_.ExtractContour(camera.camera, camera.cam_from_rig * edits_->Pose(target.frame)),
-          cv::Scalar(0, 230, 255), &image);
+    if (shown->edits->Depth(target.frame) > 0) {
+      DrawContour(caster_.ExtractContour(camera.camera,
+                                         camera.cam_from_rig * shown->edits->Pose(target.frame)),
+                  cv::Scalar(0, 230, 255), &image);
     }
   }
   if (candidate_pose) {
@@ -303,11 +345,11 @@ StatusOr<std::vector<unsigned char>> ReviewSession::ViewJpeg(const ReviewTarget&
 }
 
 StatusOr<std::string> ReviewSession::StartReannotate(int first, int last) {
-  const std::shared_ptr<const ReviewAnnotation> annotation = Annotation();
-  if (!annotation) return NoAnnotationToEdit();
-  if (!annotate_options_.ok()) {
+  const std::shared_ptr<const ShownAnnotation> shown = Shown();
+  if (!shown) return NoAnnotationToEdit();
+  if (!shown->options.ok()) {
     return Status::InvalidInput("re-annotating needs the annotation's options: " +
-                                annotate_options_.status().message());
+                                shown->options.status().message());
   }
   if (first < 0 || last < first || last >= sequence_.num_frames) {
     return Status::InvalidInput(fmt::format("re-annotate {}:{}: the sequence has frames 0..{}",
@@ -316,23 +358,44 @@ StatusOr<std::string> ReviewSession::StartReannotate(int first, int last) {
   const std::string name = fmt::format("re-annotate {}:{}", first, last);
   BCOT_RETURN_IF_ERROR(job_.Start(
       name,
-      [this, first, last,
-       dir = annotation->dir](const ReviewJob::Progress& progress) -> StatusOr<std::string> {
+      [this, first, last, shown](const ReviewJob::Progress& progress) -> StatusOr<std::string> {
         AnnotateInputs inputs;
         inputs.frames = fmt::format("{}:{}", first, last);
-        BCOT_ASSIGN_OR_RETURN(
-            const AnnotationOutcome outcome,
-            AnnotateSequenceDir(sequence_.dir, dir, *annotate_options_, inputs, progress));
+        BCOT_ASSIGN_OR_RETURN(const AnnotationOutcome outcome,
+                              AnnotateSequenceDir(sequence_.dir, shown->files.dir, *shown->options,
+                                                  inputs, progress));
         BCOT_ASSIGN_OR_RETURN(ReviewAnnotation reloaded,
-                              LoadReviewAnnotation(dir, sequence_.num_frames));
-        edits_->Rebase(reloaded.rig_from_object, first, last);
-        {
-          std::lock_guard<std::mutex> lock(annotation_mutex_);
-          annotation_ = std::make_shared<const ReviewAnnotation>(std::move(reloaded));
-        }
-        return fmt::format("frames {}:{} re-annotated; the sequence is {} (worst {:.2f} px)", first,
-                           last, outcome.verdict.accepted ? "accepted" : "rejected",
-                           outcome.verdict.worst_px);
+                              LoadReviewAnnotation(shown->files.dir, sequence_.num_frames));
+        // The same edits (those of the re-annotated frames dropped) over the new poses.
+        shown->edits->Rebase(reloaded.rig_from_object, first, last);
+        auto next = std::make_shared<ShownAnnotation>(*shown);
+        next->files = std::move(reloaded);
+        Show(std::move(next));
+        return fmt::format("frames {}:{} re-annotated; {}", first, last, Verdict(outcome));
+      }));
+  return ordered_json{{"job", name}}.dump();
+}
+
+StatusOr<std::string> ReviewSession::StartAnnotate() {
+  if (Shown()) {
+    return Status::InvalidInput("an annotation is shown already; re-annotate frames instead");
+  }
+  if (annotation_target_.empty()) {
+    return Status::InvalidInput(
+        "no annotation directory to write: start bcot review with --annotation DIR (a new or "
+        "empty directory)");
+  }
+  const std::string name = "annotate into " + annotation_target_;
+  BCOT_RETURN_IF_ERROR(
+      job_.Start(name, [this](const ReviewJob::Progress& progress) -> StatusOr<std::string> {
+        BCOT_ASSIGN_OR_RETURN(const AnnotationOutcome outcome,
+                              AnnotateSequenceDir(sequence_.dir, annotation_target_,
+                                                  init_options_.annotate, progress));
+        BCOT_ASSIGN_OR_RETURN(ReviewAnnotation loaded,
+                              LoadReviewAnnotation(annotation_target_, sequence_.num_frames));
+        Show(NewShown(std::move(loaded)));
+        return fmt::format("annotated {} frames into {}; {}", outcome.frames, annotation_target_,
+                           Verdict(outcome));
       }));
   return ordered_json{{"job", name}}.dump();
 }

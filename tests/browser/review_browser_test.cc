@@ -39,18 +39,20 @@ class ReviewBrowserTest : public ::testing::Test {
     if (test::RunCommand("python3 --version") != 0) GTEST_SKIP() << "python3 not found";
   }
 
-  // Serves the sequence (and annotation) of `dir` and runs the page driver clicking `frame`.
-  // `clicks` ("cam0:X,Y;cam1:X,Y"): the initialisation flow on frame 0 as well.
-  static void ExpectPageWorks(const test::TempDir& dir, const std::string& annotation, int frame,
-                              const std::string& address_suffix = "",
-                              const std::string& clicks = "") {
+  // Serves the sequence (and annotation) of `dir`, runs the page driver clicking `frame` and
+  // returns what it printed. `clicks` ("cam0:X,Y;cam1:X,Y"): the initialisation flow on frame 0
+  // as well.
+  static std::string RunPage(const test::TempDir& dir, const std::string& annotation, int frame,
+                             const std::string& address_suffix = "",
+                             const std::string& clicks = "") {
     const StatusOr<std::unique_ptr<ReviewSession>> session =
         ReviewSession::Load(dir.File("seq"), annotation);
-    ASSERT_TRUE(session.ok()) << session.status().message();
+    EXPECT_TRUE(session.ok()) << session.status().message();
+    if (!session.ok()) return "";
     ReviewOptions options;
     options.port = 0;
     ReviewServer server(**session, options);
-    ASSERT_TRUE(server.Bind().ok());
+    EXPECT_TRUE(server.Bind().ok());
     server.Start();
     const char* artifacts = std::getenv("BCOT_TEST_ARTIFACTS");
     const std::string shots = artifacts != nullptr ? artifacts : dir.path();
@@ -62,21 +64,31 @@ class ReviewBrowserTest : public ::testing::Test {
         &output);
     EXPECT_EQ(code, 0) << output;
     EXPECT_THAT(output, HasSubstr("ok: no console messages")) << output;
-    if (!annotation.empty()) {
-      EXPECT_THAT(output, HasSubstr("ok: nudged frame 0 and set it as keyframe 0")) << output;
-      EXPECT_THAT(output, HasSubstr("ok: re-annotated frames 0:")) << output;
-      EXPECT_THAT(output, HasSubstr("ok: a drag and the wheel on a view moved the pose"))
-          << output;
-      // The re-annotation finished its files: DONE again, poses for every frame.
-      EXPECT_TRUE(std::filesystem::exists(annotation + "/DONE"));
-      const StatusOr<std::vector<Eigen::Isometry3d>> poses =
-          ReadPoseFile(annotation + "/rig_from_object.txt");
-      ASSERT_TRUE(poses.ok()) << poses.status().message();
-      EXPECT_EQ(static_cast<int>(poses->size()), kFrames);
-      const StatusOr<std::string> keyframes = ReadTextFile(dir.File("seq/keyframes.txt"));
-      ASSERT_TRUE(keyframes.ok()) << keyframes.status().message();
-      EXPECT_EQ(keyframes->substr(0, 2), "0 ");
-    }
+    return output;
+  }
+
+  // The page's edits on the annotation in `annotation` of the `num_frames` frames in dir/seq:
+  // nudge, keyframe 0, re-annotation, drag; the files they leave.
+  static void ExpectEditsWorked(const test::TempDir& dir, const std::string& annotation,
+                                int num_frames, const std::string& output) {
+    EXPECT_THAT(output, HasSubstr("ok: nudged frame 0 and set it as keyframe 0")) << output;
+    EXPECT_THAT(output, HasSubstr("ok: re-annotated frames 0:")) << output;
+    EXPECT_THAT(output, HasSubstr("ok: a drag and the wheel on a view moved the pose")) << output;
+    // The re-annotation finished its files: DONE again, poses for every frame.
+    EXPECT_TRUE(std::filesystem::exists(annotation + "/DONE"));
+    const StatusOr<std::vector<Eigen::Isometry3d>> poses =
+        ReadPoseFile(annotation + "/rig_from_object.txt");
+    ASSERT_TRUE(poses.ok()) << poses.status().message();
+    EXPECT_EQ(static_cast<int>(poses->size()), num_frames);
+    const StatusOr<std::string> keyframes = ReadTextFile(dir.File("seq/keyframes.txt"));
+    ASSERT_TRUE(keyframes.ok()) << keyframes.status().message();
+    EXPECT_EQ(keyframes->substr(0, 2), "0 ");
+  }
+
+  static void ExpectPageWorks(const test::TempDir& dir, const std::string& annotation, int frame,
+                              const std::string& address_suffix = "") {
+    const std::string output = RunPage(dir, annotation, frame, address_suffix);
+    if (!annotation.empty()) ExpectEditsWorked(dir, annotation, kFrames, output);
   }
 };
 
@@ -122,11 +134,22 @@ TEST_F(ReviewBrowserTest, InitialPoseFromTwoClicks) {
         test::TrueCentrePixel(seq, camera, 0) + Eigen::Vector2d(2.0, -2.0);
     clicks += fmt::format("{}cam{}:{:.2f},{:.2f}", camera ? ";" : "", camera, pixel.x(), pixel.y());
   }
-  ExpectPageWorks(dir, "", 1, "", clicks);
+  // --annotation names a directory that does not exist yet: the page annotates into it, then
+  // shows it (and the driver goes on with the edits on it).
+  const std::string annotation = dir.File("ann");
+  const std::string output = RunPage(dir, annotation, 1, "", clicks);
   const StatusOr<std::vector<Eigen::Isometry3d>> saved = ReadPoseFile(seq + "/init_pose.txt");
   ASSERT_TRUE(saved.ok()) << saved.status().message();
   ASSERT_EQ(saved->size(), 1u);
   EXPECT_THAT(saved->front(), test::PoseNear(test::TruePose(seq, 0), 5.0, 10.0));
+  EXPECT_THAT(output, HasSubstr("ok: annotated from the page into " + annotation)) << output;
+  EXPECT_TRUE(std::filesystem::exists(annotation + "/DONE"));
+  const StatusOr<std::vector<Eigen::Isometry3d>> poses =
+      ReadPoseFile(annotation + "/rig_from_object.txt");
+  ASSERT_TRUE(poses.ok()) << poses.status().message();
+  ASSERT_EQ(poses->size(), 3u);
+  EXPECT_THAT(poses->back(), test::PoseNear(test::TruePose(seq, 2), 1.0, 2.0));
+  ExpectEditsWorked(dir, annotation, 3, output);
 }
 
 }  // namespace

@@ -13,7 +13,8 @@ annotation, the trajectory charts hold their series, a click on the rotation cha
 keyframes.txt, re-annotating around it from the page runs to the end and drops the edit, and
 with "drag edits the pose" a drag and the wheel on a view move the pose.
 With clicks (last argument; image pixels of frame 0), on a sequence without annotation: the
-clicks on the views, "find pose", the first candidate drawn and saved as init_pose.txt.
+clicks on the views, "find pose", the first candidate drawn and saved as init_pose.txt, and
+when the server has a directory to annotate into, "annotate" and the page of the result.
 Any console message or script exception is a failure (the page logs nothing). Screenshots go to
 SCREENSHOT_DIR. Prints one line per check; exit 0 when all pass.
 """
@@ -237,6 +238,14 @@ def initialise(browser, clicks, shots):
     saved = browser.evaluate('document.body.dataset.initSaved')
     print(f'ok: initial pose from {len(clicks.split(";"))} clicks, {candidates} candidate(s), '
           f'saved to {saved}')
+    if browser.evaluate('state.sequence.annotation_target !== null'):
+        # Annotate from the page: it reloads as the page of the new annotation.
+        click_element(browser, '#annotate')
+        browser.wait_for("document.body.dataset.ready === 'yes' && state.sequence.contour && "
+                         "state.quality.available", 'the page of the new annotation', 3000)
+        expect_frame(browser, 0)
+        browser.screenshot(os.path.join(shots, 'review_annotated.png'))
+        print(f'ok: annotated from the page into {browser.evaluate("state.sequence.annotation")}')
 
 
 def run(binary, url, frame, shots, clicks):

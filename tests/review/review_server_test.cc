@@ -91,6 +91,14 @@ class ReviewServerTest : public ::testing::Test {
     }
     return job;
   }
+  // POST `path` is refused: 400 (or 404 for a frame outside the sequence) with `message`.
+  static void ExpectRefused(httplib::Client& client, const std::string& path,
+                            const std::string& message) {
+    const httplib::Result answer = Post(client, path);
+    ASSERT_TRUE(answer) << path;
+    EXPECT_TRUE(answer->status == 400 || answer->status == 404) << path << ": " << answer->status;
+    EXPECT_THAT(answer->body, HasSubstr(message)) << path;
+  }
   static Eigen::Vector3d Translation(const json& pose) {
     return Eigen::Vector3d(pose["rig_from_object"][9], pose["rig_from_object"][10],
                            pose["rig_from_object"][11]);
@@ -350,17 +358,11 @@ TEST_F(ReviewServerTest, ReannotateRunsInTheBackgroundAndReloads) {
            {"/api/reannotate?first=2&last=1", "re-annotate 2:1"},
            {"/api/reannotate?first=0&last=9", "9"},
            {"/api/reannotate?first=x&last=1", "x"}}) {
-    const httplib::Result bad = Post(client, path);
-    ASSERT_TRUE(bad) << path;
-    EXPECT_TRUE(bad->status == 400 || bad->status == 404) << path << ": " << bad->status;
-    EXPECT_THAT(bad->body, HasSubstr(message)) << path;
+    ExpectRefused(client, path, message);
   }
   RunningServer bare(*bare_);
   httplib::Client bare_client = bare.Client();
-  const httplib::Result no_annotation = Post(bare_client, "/api/reannotate?first=0&last=1");
-  ASSERT_TRUE(no_annotation);
-  EXPECT_EQ(no_annotation->status, 400);
-  EXPECT_THAT(no_annotation->body, HasSubstr("no annotation"));
+  ExpectRefused(bare_client, "/api/reannotate?first=0&last=1", "no annotation");
 }
 
 // The initial pose from clicks on the object's centre at frame 0: candidates, their overlays,
@@ -388,10 +390,7 @@ TEST_F(ReviewServerTest, InitialPoseFromClicksIsSearchedDrawnAndSaved) {
            {"/api/init?click=cam7:5,5", "cam7"},
            {"/api/init?frame=9&" + click(0, 0), "9"},
            {"/api/init", "click"}}) {
-    const httplib::Result bad = Post(client, path);
-    ASSERT_TRUE(bad) << path;
-    EXPECT_TRUE(bad->status == 400 || bad->status == 404) << path << ": " << bad->status;
-    EXPECT_THAT(bad->body, HasSubstr(message)) << path;
+    ExpectRefused(client, path, message);
   }
 
   const httplib::Result started = Post(client, "/api/init?" + click(0, 0) + "&" + click(1, 0));
@@ -422,10 +421,7 @@ TEST_F(ReviewServerTest, InitialPoseFromClicksIsSearchedDrawnAndSaved) {
   ASSERT_TRUE(pose.ok()) << pose.status().message();
   EXPECT_THAT(pose->front(), test::PoseNear(test::TruePose(seq, 0), 5.0, 10.0));
   EXPECT_TRUE(GetJson(client, "/api/sequence")["init_pose"]);
-  const httplib::Result again = Post(client, "/api/init/save?candidate=0");
-  ASSERT_TRUE(again);
-  EXPECT_EQ(again->status, 400);
-  EXPECT_THAT(again->body, HasSubstr("init_pose.txt exists"));
+  ExpectRefused(client, "/api/init/save?candidate=0", "init_pose.txt exists");
   EXPECT_EQ(Post(client, "/api/init/save?candidate=0&overwrite=1")->status, 200);
   EXPECT_EQ(Post(client, "/api/init/save?candidate=99")->status, 400);
 
@@ -439,6 +435,47 @@ TEST_F(ReviewServerTest, InitialPoseFromClicksIsSearchedDrawnAndSaved) {
   const StatusOr<KeyframePoses> keyframes = ReadKeyframeFile(seq + "/keyframes.txt", kFrames);
   ASSERT_TRUE(keyframes.ok()) << keyframes.status().message();
   EXPECT_EQ(keyframes->count(2), 1u);
+}
+
+// A new --annotation directory: "annotate" writes the annotation there in the background, and
+// the server then serves it as if it had been given at start; without an anchor the job fails
+// with annotate's own error, without a directory or with an annotation shown it is refused.
+TEST_F(ReviewServerTest, AnnotateIntoTheGivenDirectoryThenShowIt) {
+  test::TempDir work;
+  const std::string seq = test::CopyTree(dir_->File("seq"), work.File("seq"));
+  ASSERT_TRUE(ReadTextFile(seq + "/init_pose.txt").ok());
+  std::filesystem::rename(seq + "/init_pose.txt", work.File("init_pose.txt"));
+  StatusOr<std::unique_ptr<ReviewSession>> session = ReviewSession::Load(seq, work.File("new_ann"));
+  ASSERT_TRUE(session.ok()) << session.status().message();
+  RunningServer running(**session);
+  httplib::Client client = running.Client();
+  const json before = GetJson(client, "/api/sequence");
+  EXPECT_FALSE(before["contour"]);
+  EXPECT_EQ(before["annotation_target"], work.File("new_ann"));
+
+  ASSERT_EQ(Post(client, "/api/annotate")->status, 200);
+  const json failed = WaitForJob(client);
+  EXPECT_EQ(failed["state"], "failed");
+  EXPECT_THAT(failed["message"].get<std::string>(), HasSubstr("init_pose.txt"));
+
+  std::filesystem::rename(work.File("init_pose.txt"), seq + "/init_pose.txt");
+  ASSERT_EQ(Post(client, "/api/annotate")->status, 200);
+  const json done = WaitForJob(client);
+  ASSERT_EQ(done["state"], "done") << done.dump();
+  EXPECT_THAT(done["message"].get<std::string>(),
+              HasSubstr("annotated 4 frames into " + work.File("new_ann")));
+  EXPECT_TRUE(std::filesystem::exists(work.File("new_ann/DONE")));
+  const json after = GetJson(client, "/api/sequence");
+  EXPECT_TRUE(after["contour"]);
+  EXPECT_EQ(after["annotation"], work.File("new_ann"));
+  EXPECT_TRUE(after["annotation_target"].is_null());
+  EXPECT_TRUE(GetJson(client, "/api/quality")["available"]);
+  EXPECT_EQ(GetJson(client, "/api/frame/0/pose")["edits"], 0);
+
+  ExpectRefused(client, "/api/annotate", "shown already");
+  RunningServer bare(*bare_);
+  httplib::Client bare_client = bare.Client();
+  ExpectRefused(bare_client, "/api/annotate", "--annotation DIR");
 }
 
 // Frames and cameras come from the sequence; anything else, path-like or not, is an error

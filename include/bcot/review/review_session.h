@@ -32,8 +32,10 @@ namespace bcot {
 class ReviewSession {
  public:
   // Loads the sequence in `sequence_dir` (init_pose.txt not required) and, when
-  // `annotation_dir` is not empty, its annotation. Errors name the file at fault. The page's
-  // initialisation searches with `init_options` (bcot init's; `bcot review --config`).
+  // `annotation_dir` is not empty, its annotation; an `annotation_dir` that does not exist yet
+  // or is empty is where the page's "annotate" writes one (StartAnnotate). Errors name the file
+  // at fault. The page's initialisation searches with `init_options` (bcot init's; `bcot review
+  // --config`), and its annotation runs with `init_options.annotate`.
   static StatusOr<std::unique_ptr<ReviewSession>> Load(const std::string& sequence_dir,
                                                        const std::string& annotation_dir,
                                                        const InitOptions& init_options = {});
@@ -47,7 +49,8 @@ class ReviewSession {
                                  const std::string& camera_name) const;
 
   // /api/sequence: directory, frame count, cameras (name, size), annotation directory or null,
-  // whether the images show a contour.
+  // whether the images show a contour, whether init_pose.txt exists, and the directory the
+  // page's "annotate" would write (null when there is an annotation or no such directory).
   std::string SequenceJson() const;
   // /api/quality: the quality timeline, or {"available": false} without one.
   std::string QualityJson() const;
@@ -108,21 +111,36 @@ class ReviewSession {
   // annotate` to run next). kInvalidInput for an unknown candidate, or when init_pose.txt
   // exists and !overwrite.
   StatusOr<std::string> SaveInitPose(int candidate, bool overwrite);
+  // POST /api/annotate: annotates the whole sequence into the annotation directory given to
+  // Load (when it held none) with init_options.annotate, as `bcot annotate` does, then shows
+  // it: the page becomes the page of that annotation. {"job": name}; kInvalidInput when an
+  // annotation is shown already, no directory was given, or a job runs.
+  StatusOr<std::string> StartAnnotate();
 
  private:
-  ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> annotation, const Mesh& mesh,
-                const InitOptions& init_options);
+  // An annotation as the page shows it: its files, the page's edits of its poses, and its
+  // options (config.resolved.yaml, or why they could not be read).
+  struct ShownAnnotation {
+    ReviewAnnotation files;
+    std::shared_ptr<PoseEdits> edits;
+    StatusOr<AnnotateOptions> options = Status::NotFound("no annotation");
+  };
 
-  // The annotation shown now (null without one); replaced whole by a re-annotation.
-  std::shared_ptr<const ReviewAnnotation> Annotation() const;
+  ReviewSession(Sequence sequence, std::optional<ReviewAnnotation> annotation,
+                std::string annotation_target, const Mesh& mesh, const InitOptions& init_options);
+
+  // The annotation shown now (null without one); replaced whole when a job ends.
+  std::shared_ptr<const ShownAnnotation> Shown() const;
+  void Show(std::shared_ptr<const ShownAnnotation> shown);
+  // `files` as shown with new edits and the options of its config.resolved.yaml.
+  static std::shared_ptr<const ShownAnnotation> NewShown(ReviewAnnotation files);
 
   Sequence sequence_;
-  mutable std::mutex annotation_mutex_;
-  std::shared_ptr<const ReviewAnnotation> annotation_;  // guarded by annotation_mutex_
+  mutable std::mutex shown_mutex_;
+  std::shared_ptr<const ShownAnnotation> shown_;  // guarded by shown_mutex_
+  // Where StartAnnotate writes (Load's annotation_dir when it held no annotation), else "".
+  const std::string annotation_target_;
   RayCaster caster_;
-  std::unique_ptr<PoseEdits> edits_;  // with an annotation
-  // The annotation's options (config.resolved.yaml), or why they could not be read.
-  StatusOr<AnnotateOptions> annotate_options_ = Status::NotFound("no annotation");
   mutable std::mutex keyframes_mutex_;  // one keyframes.txt writer (or reader) at a time
   const InitOptions init_options_;
   mutable std::mutex init_mutex_;

@@ -516,14 +516,27 @@ async function saveInitialPose() {
                              ($('init-overwrite').checked ? '&overwrite=1' : ''));
     document.body.dataset.initSaved = saved.path;
     $('init-status').textContent = `Frame ${saved.frame}'s pose written to ${saved.path}. ` +
-        `Annotate with: ${saved.command}`;
+        (state.sequence.annotation_target ? 'Annotate the sequence below, or run: ' :
+                                            'Annotate with: ') + saved.command;
   } catch (error) {
     $('init-status').textContent = String(error.message);
   }
 }
 
+// Annotates the whole sequence into bcot review's --annotation directory, then reloads the page,
+// which is then the page of that annotation.
+function annotateSequence() {
+  runJob('api/annotate', () => window.location.reload());
+}
+
 function bindInitialisation() {
   $('init-section').hidden = false;
+  const target = state.sequence.annotation_target;
+  $('annotate-row').hidden = !target;
+  if (target) {
+    $('annotate-target').textContent = target;
+    $('annotate').addEventListener('click', annotateSequence);
+  }
   $('init-clear').addEventListener('click', () => {
     state.clicks = {};
     showClicks();
