@@ -178,7 +178,7 @@ void AddCaptureCommand(CLI::App& app, int* exit_code) {
   auto flags = std::make_shared<CaptureFlags>();
   CLI::App* command = app.add_subcommand(
       "capture", "Record synchronized frame sets from Aravis cameras into a sequence directory");
-  AddConfigFlags(command, &flags->config, "recording.max_frame_sets=100", "");
+  AddConfigFlags(command, &flags->config, CaptureOptionSchema());
   command->add_option("--out", flags->out_dir, "Sequence directory to write (new or empty)");
   command
       ->add_option("--frames", flags->frames,

@@ -1,26 +1,17 @@
 #include "bcot/capture/calibration_options.h"
-#include "bcot/core/version.h"
 
 #include <fmt/format.h>
 
 #include <string>
 #include <vector>
 
+#include "bcot/core/version.h"
+#include "camera_names.h"
+
 namespace bcot {
 namespace {
 
-// The rule camera name `names[i]` breaks (not usable as a folder name, listed before), or "".
-std::string CameraNameRule(const std::vector<std::string>& names, size_t i) {
-  const std::string& name = names[i];
-  if (name.empty() || name == "." || name == ".." ||
-      name.find_first_of("/\\") != std::string::npos) {
-    return "must be usable as a folder name";
-  }
-  for (size_t j = 0; j < i; ++j) {
-    if (names[j] == name) return "must not be listed twice";
-  }
-  return "";
-}
+using capture_internal::CameraNameRule;
 
 OptionSchema<CalibrationOptions>* BuildCalibrationOptionSchema() {
   auto* s = new OptionSchema<CalibrationOptions>();
@@ -110,7 +101,8 @@ StatusOr<CalibrationOptions> ReadCalibrationOptions(const std::string& path,
 
 std::string FormatCalibrationOptions(const CalibrationOptions& options) {
   return CalibrationOptionSchema().Emit(
-      options, {fmt::format("bcot {}: fully resolved options (bcot {})", "calibrate", BcotVersion())});
+      options,
+      {fmt::format("bcot {}: fully resolved options (bcot {})", "calibrate", BcotVersion())});
 }
 
 }  // namespace bcot

@@ -6,25 +6,54 @@
 
 #include "bcot/capture/frame_set_matcher.h"
 #include "bcot/capture/sequence_writer.h"
-#include "config_util.h"
 
 namespace bcot {
 
 static_assert(std::atomic<bool>::is_always_lock_free, "the stop flag must be signal-safe");
 
-Status RecorderOptions::Validate() const {
-  capture_internal::Violations v;
-  v.InRange("recording.max_frame_sets", max_frame_sets, 0, 1e9);
-  v.InRange("recording.max_duration_s", max_duration_s, 0.0, 1e7);
-  if (!(max_skew_ms > 0.0 && max_skew_ms <= 1000.0)) {
-    v.Add("recording.max_skew_ms", fmt::format("{}", max_skew_ms), "must be in (0, 1000]");
-  }
-  v.InRange("recording.grab_timeout_ms", grab_timeout_ms, 1, 60000);
-  v.InRange("recording.max_consecutive_misses", max_consecutive_misses, 1, 1000);
-  v.InRange("recording.max_rounds_without_set", max_rounds_without_set, 1, 1e6);
-  v.InRange("recording.png_compression", png_compression, 0, 9);
-  return v.ToStatus("recording options");
+const OptionSchema<RecorderOptions>& RecorderOptionSchema() {
+  static const OptionSchema<RecorderOptions>* const schema = [] {
+    auto* s = new OptionSchema<RecorderOptions>();
+    s->Add(
+         "recording.max_frame_sets", [](auto& o) -> auto& { return o.max_frame_sets; }, "",
+         "stop after this many frame sets; 0 = until stopped")
+        .Range(Closed(0, 1e9));
+    s->Add(
+         "recording.max_duration_s", [](auto& o) -> auto& { return o.max_duration_s; }, "s",
+         "stop after this much time; 0 = no limit")
+        .Range(Closed(0, 1e7));
+    s->Add(
+         "recording.max_skew_ms", [](auto& o) -> auto& { return o.max_skew_ms; }, "ms",
+         "frames whose host timestamps differ by at most this form a set")
+        .Range(LeftOpen(0, 1000));
+    s->Add(
+         "recording.grab_timeout_ms", [](auto& o) -> auto& { return o.grab_timeout_ms; }, "ms",
+         "how long to wait for one camera's frame")
+        .Range(Closed(1, 60000));
+    s->Add(
+         "recording.max_consecutive_misses",
+         [](auto& o) -> auto& { return o.max_consecutive_misses; }, "",
+         "a camera that misses this many grabs in a row is lost")
+        .Range(Closed(1, 1000));
+    s->Add(
+         "recording.max_rounds_without_set",
+         [](auto& o) -> auto& { return o.max_rounds_without_set; }, "",
+         "stop when this many rounds in a row complete no frame set")
+        .Range(Closed(1, 1e6));
+    s->Add(
+         "recording.png_compression", [](auto& o) -> auto& { return o.png_compression; }, "",
+         "zlib level of the written PNGs (1 fast, 9 small)")
+        .Range(Closed(0, 9));
+    s->Add(
+         "recording.rig_yaml", [](auto& o) -> auto& { return o.rig_yaml; }, "",
+         "rig.yaml to copy into the sequence (relative to the config file); empty = none")
+        .Path();
+    return s;
+  }();
+  return *schema;
 }
+
+Status RecorderOptions::Validate() const { return RecorderOptionSchema().Validate(*this, nullptr); }
 
 Recorder::Recorder(std::vector<std::unique_ptr<FrameSource>> sources, RecorderOptions options)
     : sources_(std::move(sources)), options_(std::move(options)) {

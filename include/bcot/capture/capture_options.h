@@ -3,7 +3,9 @@
 //
 // Sections: `aravis`, `trigger`, `cameras` (a list, one mapping per camera), `recording`
 // (RecorderOptions). YAML keys are spelled as the fields; unknown keys are errors naming
-// file:line:key. Camera settings that are absent are left as the camera has them.
+// file:line:key. Camera settings that are absent are left as the camera has them. Every option
+// is declared once, in CaptureOptionSchema (core/option_schema.h): parsing, --set, validation,
+// the resolved file and `bcot capture --help` derive from it.
 #pragma once
 
 #include <yaml-cpp/yaml.h>
@@ -14,6 +16,7 @@
 #include <vector>
 
 #include "bcot/capture/recorder.h"
+#include "bcot/core/option_schema.h"
 #include "bcot/core/status.h"
 
 namespace bcot {
@@ -61,6 +64,8 @@ struct CaptureOptions {
   // Every violation, kInvalidConfig.
   Status Validate() const;
 };
+
+const OptionSchema<CaptureOptions>& CaptureOptionSchema();
 
 // Reads a config file strictly, applies `overrides` ("section.key=value"; the `cameras` list
 // can only be set whole, e.g. `--set 'cameras=[{name: c0, device_id: Fake_1}]'`), resolves

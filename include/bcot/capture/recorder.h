@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "bcot/capture/frame_source.h"
+#include "bcot/core/option_schema.h"
 #include "bcot/core/status.h"
 
 namespace bcot {
@@ -49,6 +50,9 @@ struct RecorderOptions {
 
   Status Validate() const;  // every violation, kInvalidConfig
 };
+
+// The declaration of every recorder option (section `recording` of capture.yaml).
+const OptionSchema<RecorderOptions>& RecorderOptionSchema();
 
 struct RecordingStats {
   std::vector<std::string> camera_names;

@@ -17,7 +17,8 @@
 // default-constructed Options (the struct's in-class default). Keys are "key" (top level) or
 // "section.key" (any depth). Field types: bool, int, double, std::string, std::vector of
 // int/double/std::string, std::array<double, N>; AddChoice takes any value type comparable
-// with == (enums, std::optional<enum>, std::string).
+// with == (enums, std::optional<enum>, std::string); AddCustom any type with its own YAML
+// reader and writer (capture's list of cameras).
 //
 // Messages:
 //   run.yaml:3: frame.rounds: expected an integer, got 'abc'          (type, from the file)
@@ -113,6 +114,14 @@ template <typename T>
 struct IsList<std::vector<T>> : std::true_type {};
 template <typename T, size_t N>
 struct IsList<std::array<T, N>> : std::true_type {};
+
+// One violated rule of a part of an option (an element of a list of mappings, say):
+// "key = value, rule" with key "cameras[1].gain".
+struct PartViolation {
+  std::string key;
+  std::string value;
+  std::string rule;
+};
 
 // "where: key = value, rule"; "key = value (default), rule" when `source` is empty (not set);
 // "key = value, rule" when `source` is "-" (not located).
@@ -231,6 +240,13 @@ class OptionSchema {
       checks_.push_back(std::move(rule));
       return *this;
     }
+    // Rules on the parts of the option's value: `rules(options)` lists every violation, each
+    // with the key of its part ("cameras[1].gain"); located like the option itself.
+    Option& CheckParts(
+        std::function<std::vector<option_internal::PartViolation>(const Options&)> rules) {
+      part_checks_.push_back(std::move(rules));
+      return *this;
+    }
     // Names of the elements of a fixed-length list in messages ("x", "y", "z").
     Option& Elements(std::vector<std::string> names) {
       info_.element_names = std::move(names);
@@ -254,6 +270,8 @@ class OptionSchema {
     std::function<std::vector<double>(const Options&)> numbers_;
     std::function<std::vector<std::string>(const Options&)> strings_;
     std::vector<std::function<std::string(const Options&)>> checks_;
+    std::vector<std::function<std::vector<option_internal::PartViolation>(const Options&)>>
+        part_checks_;
   };
 
   // A plain option: `access(options)` is a reference to the field.
@@ -320,6 +338,29 @@ class OptionSchema {
     return option;
   }
 
+  // An option of a type the plain readers do not cover (a list of mappings, say), with its own
+  // reader and writer: `read(map, base_dir, &field)` reads map[name] (called only when the key
+  // is present; YamlMap gives its location), `emit(out, field)` writes it so that `read` gives
+  // it back, `text(field)` is its text in messages and --help. Rules: Check / CheckParts.
+  template <typename Access, typename Read, typename Emit, typename Text>
+  Option& AddCustom(const std::string& key, Access access, Read read, Emit emit, Text text,
+                    const std::string& help) {
+    Option& option = NewOption(key, "", help);
+    const option_internal::OptionInfo* info = &option.info_;
+    option.read_ = [access, info, read](YamlMap& map, const std::string& base_dir, Options* o) {
+      if (!map.Has(info->name)) {
+        map.Node(info->name);  // known, absent
+        return Status::Ok();
+      }
+      return read(map, base_dir, &access(*o));
+    };
+    option.emit_ = [access, emit](YAML::Emitter& out, const Options& o) { emit(out, access(o)); };
+    option.text_ = [access, text](const Options& o) { return text(access(o)); };
+    option.numbers_ = [](const Options&) { return std::vector<double>(); };
+    option.strings_ = [](const Options&) { return std::vector<std::string>(); };
+    return option;
+  }
+
   // Declares every option of `inner` (same keys) on the part `access(options)` of these
   // options: a command's schema made of its layers' schemas.
   template <typename Inner, typename Access>
@@ -344,6 +385,10 @@ class OptionSchema {
       };
       for (const auto& check : in.checks_) {
         option->checks_.push_back([check, access](const Options& o) { return check(access(o)); });
+      }
+      for (const auto& check : in.part_checks_) {
+        option->part_checks_.push_back(
+            [check, access](const Options& o) { return check(access(o)); });
       }
       options_.push_back(std::move(option));
     }
@@ -388,6 +433,11 @@ class OptionSchema {
         if (!rule.empty()) {
           violations.push_back(
               option_internal::Violation(source, info.key, option->text_(options), rule));
+        }
+      }
+      for (const auto& check : option->part_checks_) {
+        for (const option_internal::PartViolation& part : check(options)) {
+          violations.push_back(option_internal::Violation(source, part.key, part.value, part.rule));
         }
       }
     }
