@@ -17,6 +17,7 @@
 
 #include "bcot/core/file_util.h"
 #include "bcot/core/pose_io.h"
+#include "bcot/review/review_annotation.h"
 #include "bcot/review/review_server.h"
 #include "bcot/review/review_session.h"
 #include "synth_truth.h"
@@ -74,8 +75,20 @@ class ReviewBrowserTest : public ::testing::Test {
     EXPECT_THAT(output, HasSubstr("ok: nudged frame 0 and set it as keyframe 0")) << output;
     EXPECT_THAT(output, HasSubstr("ok: re-annotated frames 0:")) << output;
     EXPECT_THAT(output, HasSubstr("ok: a drag and the wheel on a view moved the pose")) << output;
-    // The re-annotation finished its files: DONE again, poses for every frame.
+    // The re-annotation finished its files: DONE again, poses for every frame, and the page's
+    // timeline shows the new quality.json's errors.
     EXPECT_TRUE(std::filesystem::exists(annotation + "/DONE"));
+    const StatusOr<std::string> quality_text = ReadTextFile(annotation + "/quality.json");
+    ASSERT_TRUE(quality_text.ok()) << quality_text.status().message();
+    const StatusOr<QualityTimeline> quality =
+        ParseQualityTimeline(*quality_text, "quality.json", num_frames);
+    ASSERT_TRUE(quality.ok()) << quality.status().message();
+    std::string shown;
+    for (size_t v = 0; v < quality->view_names.size(); ++v) {
+      shown += (v > 0 ? " " : "") + quality->view_names[v] + "=" +
+               fmt::format("{}", quality->error_px[v][0]);
+    }
+    EXPECT_THAT(output, HasSubstr("timeline frame 0 after re-annotation: " + shown)) << output;
     const StatusOr<std::vector<Eigen::Isometry3d>> poses =
         ReadPoseFile(annotation + "/rig_from_object.txt");
     ASSERT_TRUE(poses.ok()) << poses.status().message();

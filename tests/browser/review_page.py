@@ -309,6 +309,10 @@ def run(binary, url, frame, shots, clicks):
                 expect_frame(browser, 0)
                 browser.screenshot(os.path.join(shots, 'review_reannotated.png'))
                 print(f'ok: re-annotated frames {span[0]}:{span[1]} from the page: {status}')
+                # The timeline shows the new errors (the caller compares them with quality.json).
+                errors = browser.evaluate(
+                    "state.quality.views.map((v) => v.name + '=' + v.error_px[0]).join(' ')")
+                print(f'timeline frame 0 after re-annotation: {errors}')
 
                 # With "drag edits the pose": a drag on cam0 moves the model, the wheel its depth.
                 click_element(browser, '#edit-drag')
