@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bcot/annotate/annotator.h"
+#include "bcot/core/annotation_poses.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/image_io.h"
 #include "bcot/core/pose_io.h"
@@ -203,6 +204,11 @@ StatusOr<std::unique_ptr<ReviewSession>> ReviewSession::Load(const std::string& 
   std::string annotation_target;
   if (IsEmptyOrAbsent(annotation_dir)) {
     annotation_target = annotation_dir;  // "" without one
+  } else if (!IsFile(annotation_dir + "/" + kRigFromObjectFileName)) {
+    return Status::InvalidInput(fmt::format(
+        "--annotation {}: neither an annotation (no {}) nor a new or empty directory to "
+        "annotate into",
+        annotation_dir, kRigFromObjectFileName));
   } else {
     BCOT_ASSIGN_OR_RETURN(annotation, LoadReviewAnnotation(annotation_dir, sequence.num_frames));
   }

@@ -449,6 +449,10 @@ TEST_F(ReviewServerTest, AnnotateIntoTheGivenDirectoryThenShowIt) {
   ASSERT_TRUE(session.ok()) << session.status().message();
   RunningServer running(**session);
   httplib::Client client = running.Client();
+  // A folder that is neither an annotation nor empty is refused.
+  const StatusOr<std::unique_ptr<ReviewSession>> foreign = ReviewSession::Load(seq, seq + "/cam0");
+  ASSERT_FALSE(foreign.ok());
+  EXPECT_THAT(foreign.status().message(), HasSubstr("neither an annotation"));
   const json before = GetJson(client, "/api/sequence");
   EXPECT_FALSE(before["contour"]);
   EXPECT_EQ(before["annotation_target"], work.File("new_ann"));
