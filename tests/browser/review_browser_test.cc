@@ -59,7 +59,7 @@ class ReviewBrowserTest : public ::testing::Test {
     const std::string shots = artifacts != nullptr ? artifacts : dir.path();
     std::string output;
     const int code = test::RunCommand(
-        "timeout 300 python3 " + test::SourcePath("tests/browser/review_page.py") + " " +
+        "timeout 900 python3 " + test::SourcePath("tests/browser/review_page.py") + " " +
             kChromium + " '" + server.Url() + address_suffix + "' " + std::to_string(frame) + " " +
             shots + (clicks.empty() ? "" : " '" + clicks + "'"),
         &output);
