@@ -75,6 +75,7 @@ class ReviewBrowserTest : public ::testing::Test {
     EXPECT_THAT(output, HasSubstr("ok: nudged frame 0 and set it as keyframe 0")) << output;
     EXPECT_THAT(output, HasSubstr("ok: re-annotated frames 0:")) << output;
     EXPECT_THAT(output, HasSubstr("ok: a drag and the wheel on a view moved the pose")) << output;
+    EXPECT_THAT(output, HasSubstr("ok: the edit keys nudge and undo")) << output;
     // The re-annotation finished its files: DONE again, poses for every frame, and the page's
     // timeline shows the new quality.json's errors.
     EXPECT_TRUE(std::filesystem::exists(annotation + "/DONE"));

@@ -333,6 +333,13 @@ def run(binary, url, frame, shots, clicks):
                 assert any(abs(m) > 0.1 for m in moved), f'the pose did not move: {moved}'
                 expect_frame(browser, 0)
                 print(f'ok: a drag and the wheel on a view moved the pose by {moved} mm')
+                # The edit keys: d moves right (a nudge), u undoes it.
+                browser.key('d', 68)
+                browser.wait_for("document.body.dataset.edits === '3'", 'the key edit')
+                browser.key('u', 85)
+                browser.wait_for("document.body.dataset.edits === '2'", 'the key undo')
+                expect_frame(browser, 0)
+                print('ok: the edit keys nudge and undo')
             browser.screenshot(os.path.join(shots, 'review_end.png'))
             problems = browser.problems()
             assert not problems, f'console messages or exceptions: {problems}'

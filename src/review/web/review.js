@@ -343,6 +343,15 @@ function drawTimeline() {
 
 // --- editing --------------------------------------------------------------------------------
 
+// Keys of the edit buttons (in the view chosen for the buttons): a/d left/right, w/s up/down,
+// r/f nearer/farther, i/k, j/l, q/e the turns about the view's x, y and viewing axes, u undo.
+const EDIT_KEYS = {
+  a: '[data-nudge="dx:-1"]', d: '[data-nudge="dx:1"]', w: '[data-nudge="dy:-1"]',
+  s: '[data-nudge="dy:1"]', r: '[data-nudge="dz:-1"]', f: '[data-nudge="dz:1"]',
+  i: '[data-nudge="rx:-1"]', k: '[data-nudge="rx:1"]', j: '[data-nudge="ry:-1"]',
+  l: '[data-nudge="ry:1"]', q: '[data-nudge="rz:-1"]', e: '[data-nudge="rz:1"]', u: '#undo',
+};
+
 async function post(url) {
   const response = await fetch(url, {method: 'POST'});
   const text = await response.text();
@@ -603,8 +612,13 @@ function bindControls() {
   $('play').addEventListener('click', () => setPlaying(!state.playing));
   document.addEventListener('keydown', (event) => {
     if (event.target.tagName === 'INPUT' && event.key !== ' ') return;
+    if (event.target.tagName === 'SELECT') return;
     const moves = {ArrowLeft: -1, ArrowRight: 1, PageUp: -10, PageDown: 10};
-    if (event.key in moves) {
+    const editButton = !$('edit-section').hidden && !event.ctrlKey && !event.altKey &&
+        !event.metaKey && EDIT_KEYS[event.key.toLowerCase()];
+    if (editButton) {
+      document.querySelector(editButton).click();
+    } else if (event.key in moves) {
       showFrame(state.frame + moves[event.key]);
     } else if (event.key === 'Home') {
       showFrame(0);
