@@ -1,20 +1,13 @@
 #include "bcot/optim/correspondence_line_cost.h"
 
 #include <cmath>
-#include <limits>
 #include <utility>
-#include <vector>
 
 #include "bcot/core/se3.h"
+#include "bcot/optim/projected_point_cost.h"
 #include "bcot/optim/se3_manifold.h"
 
 namespace bcot {
-namespace {
-
-// Model points closer to the camera plane than this (mm) make the evaluation fail.
-constexpr double kMinDepthMm = 1e-6;
-
-}  // namespace
 
 CorrespondenceLineCostFunction::CorrespondenceLineCostFunction(
     const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
@@ -35,37 +28,22 @@ CorrespondenceLineCostFunction::CorrespondenceLineCostFunction(
 
 bool CorrespondenceLineCostFunction::Evaluate(double const* const* parameters, double* residuals,
                                               double** jacobians) const {
-  const Eigen::Isometry3d cam_from_objcentre = cam_from_rig_ * FromPoseParameters(parameters[0]);
-  const Eigen::Matrix3d rotation = cam_from_objcentre.linear();
-  const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
-  const int n = num_residuals();
-  Eigen::Matrix<double, Eigen::Dynamic, 6> lie_jacobian;
-  if (want_jacobian) lie_jacobian.resize(n, 6);
-  Eigen::Matrix<double, 2, 3> d_pixel_d_point;
-  for (int i = 0; i < n; ++i) {
-    const CorrespondenceLine& line = lines_->lines[first_line_ + i];
-    const Eigen::Vector3d point_in_cam = cam_from_objcentre * line.point_in_objcentre;
-    if (!(point_in_cam.z() > kMinDepthMm)) return false;
-    const Eigen::Vector2d projection =
-        camera_.Project(point_in_cam, want_jacobian ? &d_pixel_d_point : nullptr);
-    const double scale = sqrt_weight_ / line.sigma_px;
-    residuals[i] = scale * (line.normal.dot(projection - line.projection0) - line.mean_px);
-    if (want_jacobian) {
-      // ∂r/∂δ = (√w/σ)·nᵀ·∂π/∂X_c·R_c·[I | −X^]  (S.19).
-      lie_jacobian.row(i) = scale * ProjectionLieJacobian(line.normal.transpose(), d_pixel_d_point,
-                                                          rotation, line.point_in_objcentre);
-    }
-  }
-  if (want_jacobian) AmbientFromLieJacobian(lie_jacobian, parameters[0], jacobians[0]);
-  return true;
+  const CorrespondenceLine* lines = lines_->lines.data() + first_line_;
+  // r = (√w/σ)·(nᵀ(π − π₀) − μ), ∂r/∂π = (√w/σ)·nᵀ  (S.19).
+  return EvaluateProjectedPointResiduals(
+      camera_, cam_from_rig_, parameters, num_residuals(),
+      [&](int i) -> const Eigen::Vector3d& { return lines[i].point_in_objcentre; },
+      [&](int i, const Eigen::Vector2d& projection, Eigen::RowVector2d* d_residual_d_pixel) {
+        const CorrespondenceLine& line = lines[i];
+        const double scale = sqrt_weight_ / line.sigma_px;
+        if (d_residual_d_pixel != nullptr) *d_residual_d_pixel = scale * line.normal.transpose();
+        return scale * (line.normal.dot(projection - line.projection0) - line.mean_px);
+      },
+      residuals, jacobians);
 }
 
 double CorrespondenceLineCostFunction::Energy(const double* rig_from_objcentre) const {
-  std::vector<double> residuals;
-  if (!EvaluatePoseResiduals(*this, rig_from_objcentre, &residuals)) {
-    return std::numeric_limits<double>::infinity();
-  }
-  return 0.5 * Eigen::Map<const Eigen::VectorXd>(residuals.data(), residuals.size()).squaredNorm();
+  return SumOverPoseResiduals(*this, rig_from_objcentre, [](double r) { return 0.5 * r * r; });
 }
 
 }  // namespace bcot

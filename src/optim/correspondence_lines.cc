@@ -187,15 +187,29 @@ bool ContourDistribution(const std::vector<double>& p_foreground, double first_o
                                       sigma_px);
 }
 
-bool AnchorLine(const ContourPoint& point, const Camera& camera,
-                const Eigen::Isometry3d& objcentre_from_template,
-                const Eigen::Isometry3d& cam_from_objcentre, CorrespondenceLine* line) {
-  line->centre = point.pixel;
-  line->normal = point.normal;
-  line->point_in_objcentre = objcentre_from_template * point.point_in_object;
-  const Eigen::Vector3d point_in_cam = cam_from_objcentre * line->point_in_objcentre;
+LineAnchors::LineAnchors(const RayCaster& caster, const Camera& camera,
+                         const Eigen::Isometry3d& cam_from_rig,
+                         const Eigen::Isometry3d& rig_from_objcentre, const Silhouette& silhouette,
+                         int num_lines)
+    : camera_(camera),
+      contour_(silhouette.contour),
+      objcentre_from_template_(caster.mesh().objcentre_from_template()),
+      cam_from_objcentre_(cam_from_rig * rig_from_objcentre),
+      size_(std::min(num_lines, static_cast<int>(silhouette.contour.size()))) {}
+
+const ContourPoint& LineAnchors::point(int j) const {
+  BCOT_CHECK(j >= 0 && j < size_);
+  return contour_[static_cast<size_t>((j + 0.5) * contour_.size() / size_)];
+}
+
+bool LineAnchors::Anchor(int j, CorrespondenceLine* line) const {
+  const ContourPoint& p = point(j);
+  line->centre = p.pixel;
+  line->normal = p.normal;
+  line->point_in_objcentre = objcentre_from_template_ * p.point_in_object;
+  const Eigen::Vector3d point_in_cam = cam_from_objcentre_ * line->point_in_objcentre;
   if (!(point_in_cam.z() > 0.0)) return false;
-  line->projection0 = camera.Project(point_in_cam);
+  line->projection0 = camera_.Project(point_in_cam);
   return true;
 }
 
@@ -208,21 +222,16 @@ StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
   BCOT_RETURN_IF_ERROR(CheckSilhouetteInputs(camera, image, silhouette));
   CorrespondenceLines result;
   result.rig_from_objcentre = rig_from_objcentre;
-  const std::vector<ContourPoint>& contour = silhouette.contour;
-  if (contour.empty()) return result;
-
-  const Eigen::Isometry3d objcentre_from_template = caster.mesh().objcentre_from_template();
-  const Eigen::Isometry3d cam_from_objcentre = cam_from_rig * rig_from_objcentre;
+  const LineAnchors anchors(caster, camera, cam_from_rig, rig_from_objcentre, silhouette,
+                            options.num_lines);
   const double h = options.scale_px;
   // Sub-points per sample segment (bilinear posteriors averaged over the segment).
   const int sub_points = std::max(1, static_cast<int>(std::lround(h)));
-  const int count = static_cast<int>(contour.size());
-  const int num_candidates = std::min(options.num_lines, count);
   std::vector<PendingLine> pending;
   std::vector<Eigen::Vector2i> queries;
   std::vector<Eigen::Vector2d> query_points;  // the sub-points, 4 queries each
-  for (int j = 0; j < num_candidates; ++j) {
-    const ContourPoint& point = contour[LineSampleIndex(j, count, num_candidates)];
+  for (int j = 0; j < anchors.size(); ++j) {
+    const ContourPoint& point = anchors.point(j);
     ++result.candidates;
     if (!camera.InImage(point.pixel)) {
       ++result.rejected_off_image;
@@ -237,7 +246,7 @@ StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
       continue;
     }
     PendingLine p;
-    if (!AnchorLine(point, camera, objcentre_from_template, cam_from_objcentre, &p.line)) {
+    if (!anchors.Anchor(j, &p.line)) {
       ++result.rejected_off_image;
       continue;
     }

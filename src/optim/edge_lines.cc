@@ -231,17 +231,13 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
   BCOT_RETURN_IF_ERROR(CheckSilhouetteInputs(camera, image, silhouette));
   CorrespondenceLines result;
   result.rig_from_objcentre = rig_from_objcentre;
-  const std::vector<ContourPoint>& contour = silhouette.contour;
-  if (contour.empty()) return result;
-  const Eigen::Isometry3d objcentre_from_template = caster.mesh().objcentre_from_template();
-  const Eigen::Isometry3d cam_from_objcentre = cam_from_rig * rig_from_objcentre;
-  const int count = static_cast<int>(contour.size());
-  const int num_candidates = std::min(options.num_lines, count);
+  const LineAnchors anchors(caster, camera, cam_from_rig, rig_from_objcentre, silhouette,
+                            options.num_lines);
   const double h = options.step_px;
   const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
   const cv::Mat1b& mask = silhouette.mask;
-  for (int j = 0; j < num_candidates; ++j) {
-    const ContourPoint& point = contour[LineSampleIndex(j, count, num_candidates)];
+  for (int j = 0; j < anchors.size(); ++j) {
+    const ContourPoint& point = anchors.point(j);
     ++result.candidates;
     const Eigen::Vector2d first = point.pixel - half * h * point.normal;
     const Eigen::Vector2d last = point.pixel + half * h * point.normal;
@@ -264,7 +260,7 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
       continue;
     }
     CorrespondenceLine line;
-    if (!AnchorLine(point, camera, objcentre_from_template, cam_from_objcentre, &line)) {
+    if (!anchors.Anchor(j, &line)) {
       ++result.rejected_off_image;
       continue;
     }

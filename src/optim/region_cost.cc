@@ -3,21 +3,15 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <limits>
 #include <string>
 #include <utility>
 
 #include "bcot/core/se3.h"
+#include "bcot/optim/projected_point_cost.h"
 #include "bcot/optim/se3_manifold.h"
 #include "violations.h"
 
 namespace bcot {
-namespace {
-
-// Model points closer to the camera plane than this (mm) make the evaluation fail.
-constexpr double kMinDepthMm = 1e-6;
-
-}  // namespace
 
 Status RegionCostOptions::Validate() const {
   std::vector<std::string> violations;
@@ -91,61 +85,42 @@ std::unique_ptr<ceres::LossFunction> RegionCostFunction::MakeLossFunction() cons
 
 bool RegionCostFunction::Evaluate(double const* const* parameters, double* residuals,
                                   double** jacobians) const {
-  const Eigen::Isometry3d cam_from_objcentre = cam_from_rig_ * FromPoseParameters(parameters[0]);
-  const Eigen::Matrix3d rotation = cam_from_objcentre.linear();
-  const bool want_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
-  const int n = num_residuals();
-  Eigen::Matrix<double, Eigen::Dynamic, 6> lie_jacobian;
-  if (want_jacobian) lie_jacobian.resize(n, 6);
-
+  const RegionPixel* pixels = template_->pixels.data() + first_;
   const double s = options_.heaviside_slope;
   const double eps = options_.probability_floor;
   const double w = options_.view_weight;
   const bool sqrt_form = options_.form == RegionResidualForm::kSqrtEnergy;
-  Eigen::Matrix<double, 2, 3> d_pixel_d_point;
-  for (int i = 0; i < n; ++i) {
-    const RegionPixel& p = template_->pixels[first_ + i];
-    const Eigen::Vector3d point_in_cam = cam_from_objcentre * p.point_in_objcentre;
-    if (!(point_in_cam.z() > kMinDepthMm)) return false;
-    const Eigen::Vector2d projection =
-        camera_.Project(point_in_cam, want_jacobian ? &d_pixel_d_point : nullptr);
-    const double phi = p.phi0 - p.grad_phi0.dot(projection - p.projection0);
-    const double heaviside = 0.5 - std::atan(s * phi) / kPi;
-    const double mix =
-        eps + (1.0 - 2.0 * eps) * (heaviside * p.p_foreground + (1.0 - heaviside) * p.p_background);
-    const double energy = -std::log(mix);
-    double d_residual_d_energy = 1.0;
-    if (sqrt_form) {
-      residuals[i] = std::sqrt(2.0 * w * energy);
-      d_residual_d_energy = residuals[i] > 0.0 ? w / residuals[i] : 0.0;  // 0 only when w = 0
-    } else {
-      residuals[i] = energy;
-    }
-    if (want_jacobian) {
-      const double d_heaviside = -s / (kPi * (1.0 + s * s * phi * phi));
-      const double d_energy_d_phi =
-          -(1.0 - 2.0 * eps) * (p.p_foreground - p.p_background) * d_heaviside / mix;
-      // ∂Φ/∂δ = −nᵀ·∂π/∂X_c·R_c·[I | −X^]  (S.19), n = ∇Φ₀.
-      lie_jacobian.row(i) = (-d_residual_d_energy * d_energy_d_phi) *
-                            ProjectionLieJacobian(p.grad_phi0.transpose(), d_pixel_d_point,
-                                                  rotation, p.point_in_objcentre);
-    }
-  }
-  if (want_jacobian) AmbientFromLieJacobian(lie_jacobian, parameters[0], jacobians[0]);
-  return true;
+  return EvaluateProjectedPointResiduals(
+      camera_, cam_from_rig_, parameters, num_residuals(),
+      [&](int i) -> const Eigen::Vector3d& { return pixels[i].point_in_objcentre; },
+      [&](int i, const Eigen::Vector2d& projection, Eigen::RowVector2d* d_residual_d_pixel) {
+        const RegionPixel& p = pixels[i];
+        const double phi = p.phi0 - p.grad_phi0.dot(projection - p.projection0);
+        const double heaviside = 0.5 - std::atan(s * phi) / kPi;
+        const double mix = eps + (1.0 - 2.0 * eps) * (heaviside * p.p_foreground +
+                                                      (1.0 - heaviside) * p.p_background);
+        const double energy = -std::log(mix);
+        const double residual = sqrt_form ? std::sqrt(2.0 * w * energy) : energy;
+        if (d_residual_d_pixel != nullptr) {
+          // 0 only when w = 0.
+          const double d_residual_d_energy =
+              !sqrt_form ? 1.0 : (residual > 0.0 ? w / residual : 0.0);
+          const double d_heaviside = -s / (kPi * (1.0 + s * s * phi * phi));
+          const double d_energy_d_phi =
+              -(1.0 - 2.0 * eps) * (p.p_foreground - p.p_background) * d_heaviside / mix;
+          // ∂Φ/∂π = −nᵀ with n = ∇Φ₀  (S.19).
+          *d_residual_d_pixel = (-d_residual_d_energy * d_energy_d_phi) * p.grad_phi0.transpose();
+        }
+        return residual;
+      },
+      residuals, jacobians);
 }
 
 double RegionCostFunction::Energy(const double* rig_from_objcentre) const {
-  std::vector<double> residuals;
-  if (!EvaluatePoseResiduals(*this, rig_from_objcentre, &residuals)) {
-    return std::numeric_limits<double>::infinity();
-  }
-  double energy = 0.0;
-  for (double r : residuals) {
-    energy +=
-        options_.form == RegionResidualForm::kSqrtEnergy ? 0.5 * r * r : options_.view_weight * r;
-  }
-  return energy;
+  const bool sqrt_form = options_.form == RegionResidualForm::kSqrtEnergy;
+  const double w = options_.view_weight;
+  return SumOverPoseResiduals(*this, rig_from_objcentre,
+                              [&](double r) { return sqrt_form ? 0.5 * r * r : w * r; });
 }
 
 std::vector<ceres::ResidualBlockId> AddRegionResidualBlocks(

@@ -97,17 +97,30 @@ struct CorrespondenceLines {
   int rejected_ambiguous = 0;
 };
 
-// Shared by the builders of lines (this file's and edge_lines.h's): the contour sample of the
-// j-th of `num_lines` lines spread evenly over `count` samples (evenly spaced indices are
-// evenly spaced in arc length), and the line anchored at a contour point at T0 (centre,
-// normal, model point in the object-centred frame and its projection); false when that point
-// is not in front of the camera.
-inline size_t LineSampleIndex(int j, int count, int num_lines) {
-  return static_cast<size_t>((j + 0.5) * count / num_lines);
-}
-bool AnchorLine(const ContourPoint& point, const Camera& camera,
-                const Eigen::Isometry3d& objcentre_from_template,
-                const Eigen::Isometry3d& cam_from_objcentre, CorrespondenceLine* line);
+// Shared by the builders of lines (this file's and edge_lines.h's): the candidate lines of one
+// view, min(num_lines, contour samples) of them spread evenly over the silhouette's contour
+// (evenly spaced indices are evenly spaced in arc length), and each line anchored at T0:
+// centre, normal, model point in the object-centred frame and its projection. Holds references
+// to `camera` and `silhouette`, which must outlive it.
+class LineAnchors {
+ public:
+  LineAnchors(const RayCaster& caster, const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
+              const Eigen::Isometry3d& rig_from_objcentre, const Silhouette& silhouette,
+              int num_lines);
+  int size() const { return size_; }
+  // The contour sample of candidate j, 0 <= j < size().
+  const ContourPoint& point(int j) const;
+  // The line of candidate j anchored at T0; false when its model point is not in front of the
+  // camera.
+  bool Anchor(int j, CorrespondenceLine* line) const;
+
+ private:
+  const Camera& camera_;
+  const std::vector<ContourPoint>& contour_;
+  Eigen::Isometry3d objcentre_from_template_;
+  Eigen::Isometry3d cam_from_objcentre_;
+  int size_;
+};
 
 // Builds the lines of one view at T0. `silhouette` must be RenderSilhouette at
 // cam_from_rig · T0 · objcentre_from_template. Errors (kInvalidConfig / kInvalidInput):
