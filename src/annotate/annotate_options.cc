@@ -189,8 +189,13 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "sigma", "threshold of the edge residuals' robust loss")
       .Range(Positive());
   s->Add(
+       "edge.line_spacing_px",
+       [](auto& o) -> auto& { return o.tracker.frame.edge.lines.line_spacing_px; }, "px",
+       "one edge line per this length of contour, evenly spaced along it")
+      .Range(Positive());
+  s->Add(
        "edge.num_lines", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.num_lines; }, "",
-       "edge lines per view, evenly spaced along the contour")
+       "at most this many edge lines per view")
       .Range(AtLeast(1));
   s->Add(
        "edge.search_px", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.search_px; },
@@ -383,6 +388,10 @@ void DeclareViewsAndWindow(OptionSchema<AnnotateOptions>* s) {
        "window.robust_rotation_deg", [](auto& o) -> auto& { return o.window.robust_rotation_deg; },
        "deg", "Cauchy threshold of the rotation prior")
       .Range(NonNegative());
+  s->Add(
+      "window.adaptive_prior", [](auto& o) -> auto& { return o.window.adaptive_prior; }, "",
+      "raise each window's prior sigmas to the motion's own change per frame, estimated from the "
+      "per-frame poses (the sigmas above are then the floor)");
   s->Add(
       "window.edge_posterior", [](auto& o) -> auto& { return o.window.edge_posterior; }, "",
       "a frame refined by the edge stage enters the window as its edge pose posterior "

@@ -15,6 +15,10 @@ namespace bcot {
 Status EdgeLineOptions::Validate() const {
   std::vector<std::string> violations;
   if (num_lines < 1) violations.push_back(fmt::format("num_lines = {}, must be >= 1", num_lines));
+  if (!(line_spacing_px > 0.0) || !std::isfinite(line_spacing_px)) {
+    violations.push_back(
+        fmt::format("line_spacing_px = {}, must be finite and > 0", line_spacing_px));
+  }
   if (!(step_px > 0.0) || !std::isfinite(step_px)) {
     violations.push_back(fmt::format("step_px = {}, must be finite and > 0", step_px));
   }
@@ -222,6 +226,21 @@ EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const Eigen::Vector2d& centre,
                                                           : EdgeAcross::kAmbiguous;
 }
 
+double TracedContourLengthPx(const std::vector<ContourPoint>& contour) {
+  double length_px = 0.0;
+  for (size_t i = 0; i + 1 < contour.size(); ++i) {
+    if (contour[i + 1].contour_id != contour[i].contour_id) continue;
+    length_px += (contour[i + 1].pixel - contour[i].pixel).norm();
+  }
+  return length_px;
+}
+
+int NumEdgeLines(const std::vector<ContourPoint>& contour, const EdgeLineOptions& options) {
+  if (contour.empty()) return 0;
+  const double lines = std::ceil(TracedContourLengthPx(contour) / options.line_spacing_px);
+  return static_cast<int>(std::clamp(lines, 1.0, static_cast<double>(options.num_lines)));
+}
+
 StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Camera& camera,
                                              const Eigen::Isometry3d& cam_from_rig,
                                              const Eigen::Isometry3d& rig_from_objcentre,
@@ -232,7 +251,10 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
   CorrespondenceLines result;
   result.rig_from_objcentre = rig_from_objcentre;
   const LineAnchors anchors(caster, camera, cam_from_rig, rig_from_objcentre, silhouette,
-                            options.num_lines);
+                            NumEdgeLines(silhouette.contour, options));
+  if (anchors.size() > 0) {
+    result.line_spacing_px = TracedContourLengthPx(silhouette.contour) / anchors.size();
+  }
   const double h = options.step_px;
   const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
   const cv::Mat1b& mask = silhouette.mask;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "bcot/core/se3.h"
@@ -19,7 +20,70 @@
 #include "violations.h"
 
 namespace bcot {
-namespace {}  // namespace
+namespace {
+
+// Robust per-axis variance of zero-mean 3-vectors: median of ‖d‖²/3 ÷ 0.789 (the median of
+// χ²₃/3), so one lost frame's jump does not inflate it.
+double RobustAxisVariance(std::vector<double> squared_norms) {
+  const size_t mid = squared_norms.size() / 2;
+  std::nth_element(squared_norms.begin(), squared_norms.begin() + mid, squared_norms.end());
+  return squared_norms[mid] / 3.0 / 0.789;
+}
+
+// The per-axis variance s² of the k-th differences (k = 2 or 3) of `values`; −1 when there
+// are fewer than 5 of them.
+double DifferenceVariance(const std::vector<Eigen::Vector3d>& values, int k) {
+  std::vector<double> squared_norms;
+  for (size_t t = 0; t + k < values.size(); ++t) {
+    const Eigen::Vector3d d = k == 2
+                                  ? Eigen::Vector3d(values[t + 2] - 2.0 * values[t + 1] + values[t])
+                                  : Eigen::Vector3d(values[t + 3] - 3.0 * values[t + 2] +
+                                                    3.0 * values[t + 1] - values[t]);
+    squared_norms.push_back(d.squaredNorm());
+  }
+  if (squared_norms.size() < 5) return -1.0;
+  return RobustAxisVariance(std::move(squared_norms));
+}
+
+// σ_k = max(σ_k, √(s² − c·σ_n²)·unit) for each axis, c the variance of the k-th difference of
+// unit white noise (1 + 4 + 1 = 6 for k = 2, 1 + 9 + 9 + 1 = 20 for k = 3); unchanged when
+// s² < 0 (too few spans).
+void RaiseSigmas(double s2, int k, double noise_variance, double unit,
+                 std::array<double, 3>* sigmas) {
+  if (s2 < 0.0) return;
+  const double noise_factor = k == 2 ? 6.0 : 20.0;
+  const double motion = std::sqrt(std::max(0.0, s2 - noise_factor * noise_variance)) * unit;
+  for (double& sigma : *sigmas) sigma = std::max(sigma, motion);
+}
+
+}  // namespace
+
+WindowProblemOptions AdaptedPriorOptions(const WindowProblemOptions& options,
+                                         const std::vector<Eigen::Isometry3d>& per_frame,
+                                         const PerFrameNoise& noise) {
+  WindowProblemOptions adapted = options;
+  // Translation: the object centre in the rig frame; its velocity is the first difference.
+  std::vector<Eigen::Vector3d> centres;
+  for (const Eigen::Isometry3d& pose : per_frame) centres.push_back(pose.translation());
+  const int translation_order =
+      options.translation_model == MotionModel::kConstantAcceleration ? 3 : 2;
+  RaiseSigmas(DifferenceVariance(centres, translation_order), translation_order,
+              noise.translation_mm2, 1.0, &adapted.translation_sigma_mm);
+  // Rotation: the body angular velocity ω_t = Log(R_tᵀR_{t+1}) is the first difference.
+  std::vector<Eigen::Vector3d> velocities;
+  for (size_t t = 0; t + 1 < per_frame.size(); ++t) {
+    velocities.push_back(
+        LogSO3(Eigen::Matrix3d(per_frame[t].linear().transpose() * per_frame[t + 1].linear())));
+  }
+  // Differences of ω of order 1 (velocity model) or 2 (acceleration) are differences of order
+  // 2 or 3 of the accumulated angles.
+  std::vector<Eigen::Vector3d> angles = {Eigen::Vector3d::Zero()};
+  for (const Eigen::Vector3d& w : velocities) angles.push_back(angles.back() + w);
+  const int rotation_order = options.rotation_model == MotionModel::kConstantAcceleration ? 3 : 2;
+  RaiseSigmas(DifferenceVariance(angles, rotation_order), rotation_order, noise.rotation_rad2,
+              180.0 / kPi, &adapted.rotation_sigma_deg);
+  return adapted;
+}
 
 // A prior term spans 3 (velocity) or 4 (acceleration) frames, so a term touching the window
 // reaches that many frames − 1 out of it.
@@ -120,6 +184,12 @@ WindowSummary WindowProblem::Solve(
   WindowSummary summary;
   summary.first = first;
   summary.end = end;
+  summary.translation_sigma_mm =
+      std::cbrt(options_.translation_sigma_mm[0] * options_.translation_sigma_mm[1] *
+                options_.translation_sigma_mm[2]);
+  summary.rotation_sigma_deg =
+      std::cbrt(options_.rotation_sigma_deg[0] * options_.rotation_sigma_deg[1] *
+                options_.rotation_sigma_deg[2]);
 
   // Parameter blocks for the window and its context frames [lo, hi).
   const int context = options_.ContextFrames();
@@ -231,6 +301,7 @@ void WindowSmoother::Push(const Eigen::Isometry3d& rig_from_objcentre,
                           std::vector<ViewLinearisation> views) {
   BCOT_CHECK(!finished_);
   poses_.push_back(rig_from_objcentre);
+  per_frame_poses_.push_back(rig_from_objcentre);
   buffer_.push_back(std::move(views));
   const int size = problem_.options().size;
   if (size == 0) return;  // whole sequence: everything waits for Finish
@@ -260,11 +331,41 @@ void WindowSmoother::Finish() {
   buffer_first_ = num_frames;
 }
 
+std::optional<PerFrameNoise> WindowSmoother::PredictedNoise(int first, int end) const {
+  PerFrameNoise noise;
+  int frames = 0;
+  for (int t = std::max(first, buffer_first_); t < end; ++t) {
+    const std::vector<ViewLinearisation>& views = buffer_[t - buffer_first_];
+    if (views.empty() || views.front().edge_posterior == nullptr) continue;
+    const Matrix6d& u = views.front().edge_posterior->sqrt_information;
+    const Matrix6d covariance = (u.transpose() * u).inverse();
+    noise.translation_mm2 += covariance.topLeftCorner<3, 3>().trace() / 3.0;
+    noise.rotation_rad2 += covariance.bottomRightCorner<3, 3>().trace() / 3.0;
+    ++frames;
+  }
+  if (frames == 0) return std::nullopt;
+  noise.translation_mm2 /= frames;
+  noise.rotation_rad2 /= frames;
+  return noise;
+}
+
 void WindowSmoother::SolveWindow(int end) {
   const int first = next_start_;
   std::vector<const std::vector<ViewLinearisation>*> frame_views;
   for (int t = first; t < end; ++t) frame_views.push_back(&buffer_[t - buffer_first_]);
-  windows_.push_back(problem_.Solve(first, end, frame_views, &poses_, &anchors_));
+  const WindowProblemOptions& configured = problem_.options();
+  const int hi = std::min(static_cast<int>(poses_.size()), end + configured.ContextFrames());
+  const std::optional<PerFrameNoise> noise =
+      configured.adaptive_prior ? PredictedNoise(first, hi) : std::nullopt;
+  if (noise.has_value()) {
+    const int lo = std::max(0, first - configured.ContextFrames());
+    const std::vector<Eigen::Isometry3d> span(per_frame_poses_.begin() + lo,
+                                              per_frame_poses_.begin() + hi);
+    const WindowProblem adapted(AdaptedPriorOptions(configured, span, *noise));
+    windows_.push_back(adapted.Solve(first, end, frame_views, &poses_, &anchors_));
+  } else {
+    windows_.push_back(problem_.Solve(first, end, frame_views, &poses_, &anchors_));
+  }
   const int size = problem_.options().size;
   const int step = size == 0 ? end - first : size - problem_.options().overlap;
   next_start_ = std::min(first + step, end);

@@ -92,6 +92,8 @@ struct CorrespondenceLines {
   Eigen::Isometry3d rig_from_objcentre = Eigen::Isometry3d::Identity();  // T0
   std::vector<CorrespondenceLine> lines;
   int candidates = 0;  // contour points tried
+  // Length of traced contour (px) per candidate line (edge lines; 0 when not set).
+  double line_spacing_px = 0.0;
   int rejected_short = 0;
   int rejected_off_image = 0;
   int rejected_ambiguous = 0;

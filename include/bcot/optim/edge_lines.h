@@ -61,8 +61,12 @@
 namespace bcot {
 
 struct EdgeLineOptions {
-  // Lines per view, evenly spaced along the contour; >= 1.
-  int num_lines = 200;
+  // Lines per view: one per line_spacing_px of traced contour, evenly spaced along it, at
+  // most num_lines. The image carries edge evidence at every contour pixel; lines much closer
+  // than a pixel share their samples through the blur and add little. spacing > 0,
+  // num_lines >= 1.
+  double line_spacing_px = 1.0;
+  int num_lines = 1000;
   // Profile half-length (px) and sample spacing (px); window > search + fit_half is not
   // required (the fit window is clipped to the profile), step > 0, window >= 2.
   double window_px = 4.0;
@@ -87,6 +91,12 @@ struct EdgeLineOptions {
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
+
+// Length (px) of the traced contours: the sum of the steps between consecutive samples of the
+// same contour.
+double TracedContourLengthPx(const std::vector<ContourPoint>& contour);
+// The number of lines BuildEdgeLines places along `contour` (see line_spacing_px).
+int NumEdgeLines(const std::vector<ContourPoint>& contour, const EdgeLineOptions& options);
 
 // The fitted step of one profile (exposed for tests).
 struct EdgeFit {

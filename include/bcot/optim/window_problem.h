@@ -14,9 +14,9 @@
 // on, ½ eᵀH_t e, the Gaussian pose posterior of its edge solve (pose_gaussian_cost.h: mean the
 // per-frame pose, H_t = Σ ρ'·JᵀJ of its whitened, robustly weighted edge residuals, each view
 // discounted as a whole for the error its lines share, divided by their a posteriori variance
-// factor when that exceeds 1: frame_problem.cc EdgePosterior). Why the posterior and not the region terms: the
-// region minimum is biased under shaded rims (edge_lines.h) and the window, refining on it,
-// pulled the poses back towards that bias (window_problem_test: mean error 0.035 → 0.059 mm
+// factor when that exceeds 1: frame_problem.cc EdgePosterior). Why the posterior and not the region
+// terms: the region minimum is biased under shaded rims (edge_lines.h) and the window, refining on
+// it, pulled the poses back towards that bias (window_problem_test: mean error 0.035 → 0.059 mm
 // with the edge stage on); and not the edge lines themselves: re-measuring them is not possible
 // without the images, and the lines at the final pose hold the same information to second
 // order as H_t does, at 6 residuals per frame instead of hundreds. Both H_t and the prior are
@@ -77,6 +77,7 @@
 #include <array>
 #include <deque>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -134,6 +135,11 @@ struct WindowProblemOptions {
   // changes to follow; each >= 0, 0 = plain quadratic prior for that part.
   double robust_translation_mm = 0.5;
   double robust_rotation_deg = 0.3;
+  // Raise each window's σ to the motion's own (empirical Bayes, AdaptedPriorOptions): the
+  // configured σ above are then the floor, fit for smooth handheld motion, and a faster motion
+  // (a turntable, a thrown or swung object) is not bent toward the prior's model. Needs the
+  // frames' edge posteriors for the noise's share: windows without any keep the configured σ.
+  bool adaptive_prior = true;
   // A frame whose solve ended with the edge stage carries its edge pose posterior
   // (ViewLinearisation::edge_posterior): true = that Gaussian is the frame's data term in the
   // window, in place of its region terms; false = the region terms (whose minimum is biased
@@ -158,6 +164,25 @@ struct WindowProblemOptions {
   Status Validate() const;
 };
 
+// Per-axis variances of the per-frame poses' noise (their edge posteriors' prediction):
+// translation of the object centre (mm²) and rotation (rad²).
+struct PerFrameNoise {
+  double translation_mm2 = 0.0;
+  double rotation_rad2 = 0.0;
+};
+
+// `options` with each part's prior σ raised to what the motion of `per_frame` (consecutive
+// per-frame poses rig_from_objcentre, the window and its context) shows: the part's modelled
+// quantity (change per frame of velocity or acceleration, window_problem.h) is differenced from
+// the poses, its per-axis variance taken robustly (median of ‖d‖²/3 over the spans ÷ 0.789, the
+// median of χ²₃/3) and the noise's share removed (a k-th difference of white noise of variance
+// σ_n² has variance c·σ_n², c = 6 for second and 20 for third differences):
+//   σ² = max(σ_configured², s² − c·σ_n²)   per axis.
+// Fewer than 5 spans: `options` unchanged.
+WindowProblemOptions AdaptedPriorOptions(const WindowProblemOptions& options,
+                                         const std::vector<Eigen::Isometry3d>& per_frame,
+                                         const PerFrameNoise& noise);
+
 struct WindowSummary {
   int first = 0;  // frames [first, end)
   int end = 0;
@@ -166,6 +191,9 @@ struct WindowSummary {
   int iterations = 0;         // Ceres iterations
   double initial_cost = 0.0;  // Ceres cost (region energy + ½‖prior‖²) at the per-frame poses
   double final_cost = 0.0;
+  // The prior σ the window ran with (raised by adaptive_prior where the motion asked for it).
+  double translation_sigma_mm = 0.0;  // geometric mean of the three axes
+  double rotation_sigma_deg = 0.0;
   bool usable = true;   // false: Ceres failed, the window's poses were left unchanged
   std::string message;  // Ceres' message when !usable
 };
@@ -221,8 +249,13 @@ class WindowSmoother {
   // Solves the window starting at next_start_ and ending at `end`, then commits and releases.
   void SolveWindow(int end);
 
+  // The noise of frames [first, end) predicted by their edge posteriors (frames without one
+  // are left out); none when no frame has one.
+  std::optional<PerFrameNoise> PredictedNoise(int first, int end) const;
+
   WindowProblem problem_;
   std::vector<Eigen::Isometry3d> poses_;
+  std::vector<Eigen::Isometry3d> per_frame_poses_;     // as pushed
   std::deque<std::vector<ViewLinearisation>> buffer_;  // frames [buffer_first_, poses_.size())
   int buffer_first_ = 0;
   int next_start_ = 0;
