@@ -24,10 +24,14 @@ command -v blender >/dev/null || { echo "pbr_synth: blender not found (scripts/s
 if [ -e "$out" ]; then echo "pbr_synth: $out exists" >&2; exit 2; fi
 partial="$out.partial"
 mkdir -p "$partial/raw"
+# One run per output: a second run on the same folder would rename frames under the first.
+exec 9>"$partial/.lock"
+flock -n 9 || { echo "pbr_synth: another run is writing $partial" >&2; exit 1; }
 nice blender -b --factory-startup --python-exit-code 1 --python "$here/pbr/render_blender.py" -- \
   --spec "$spec" --raw "$partial/raw" "${sets[@]}" >"$partial/blender.log" 2>&1 ||
   { echo "pbr_synth: Blender failed, see $partial/blender.log" >&2; tail -20 "$partial/blender.log" >&2; exit 1; }
 /usr/bin/python3 "$here/pbr/postprocess.py" --spec "$spec" --raw "$partial/raw" --out "$partial" "${sets[@]}"
 [ "${BCOT_PBR_KEEP_RAW:-0}" = 1 ] || rm -rf "$partial/raw"
+rm -f "$partial/.lock"  # the open descriptor keeps the lock until exit
 mv "$partial" "$out"
 echo "pbr_synth: wrote $out ($(cat "$out/pbr_timing.json"))"
