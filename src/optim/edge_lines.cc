@@ -235,10 +235,19 @@ double TracedContourLengthPx(const std::vector<ContourPoint>& contour) {
   return length_px;
 }
 
+namespace {
+
+// Lines along `length_px` of a non-empty contour (see EdgeLineOptions::line_spacing_px).
+int NumEdgeLinesForLength(double length_px, const EdgeLineOptions& options) {
+  const double lines = std::ceil(length_px / options.line_spacing_px);
+  return static_cast<int>(std::clamp(lines, 1.0, static_cast<double>(options.num_lines)));
+}
+
+}  // namespace
+
 int NumEdgeLines(const std::vector<ContourPoint>& contour, const EdgeLineOptions& options) {
   if (contour.empty()) return 0;
-  const double lines = std::ceil(TracedContourLengthPx(contour) / options.line_spacing_px);
-  return static_cast<int>(std::clamp(lines, 1.0, static_cast<double>(options.num_lines)));
+  return NumEdgeLinesForLength(TracedContourLengthPx(contour), options);
 }
 
 StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Camera& camera,
@@ -250,11 +259,11 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
   BCOT_RETURN_IF_ERROR(CheckSilhouetteInputs(camera, image, silhouette));
   CorrespondenceLines result;
   result.rig_from_objcentre = rig_from_objcentre;
-  const LineAnchors anchors(caster, camera, cam_from_rig, rig_from_objcentre, silhouette,
-                            NumEdgeLines(silhouette.contour, options));
-  if (anchors.size() > 0) {
-    result.line_spacing_px = TracedContourLengthPx(silhouette.contour) / anchors.size();
-  }
+  const double length_px = TracedContourLengthPx(silhouette.contour);
+  const LineAnchors anchors(
+      caster, camera, cam_from_rig, rig_from_objcentre, silhouette,
+      silhouette.contour.empty() ? 0 : NumEdgeLinesForLength(length_px, options));
+  if (anchors.size() > 0) result.line_spacing_px = length_px / anchors.size();
   const double h = options.step_px;
   const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
   const cv::Mat1b& mask = silhouette.mask;
