@@ -109,6 +109,46 @@ double ColorHistograms::ForegroundPosterior(int bin) const {
 }
 
 // ---------------------------------------------------------------------------------------------
+// BoundaryDistances
+
+namespace {
+
+// Distance of each pixel of `box()` to the other side of the silhouette boundary: of an inside
+// pixel to the nearest outside one, of an outside pixel to the nearest inside one. box() is the
+// mask's bounding box grown by grow_px (>= 1) and clipped to the image; the distances are those
+// of the whole image (every inside pixel is in the box, and the box's ring of outside pixels is
+// nearer to any inside pixel than anything beyond it), at the cost of the box only.
+class BoundaryDistances {
+ public:
+  BoundaryDistances(const cv::Mat1b& mask, int grow_px) {
+    BCOT_CHECK(grow_px >= 1);
+    const cv::Rect bounds = cv::boundingRect(mask);
+    box_ = cv::Rect(bounds.x - grow_px, bounds.y - grow_px, bounds.width + 2 * grow_px,
+                    bounds.height + 2 * grow_px) &
+           cv::Rect(0, 0, mask.cols, mask.rows);
+    const cv::Mat1b inside = mask(box_);
+    const cv::Mat1b outside = inside == 0;
+    // distanceTransform: distance of every non-zero pixel to the nearest zero one.
+    cv::distanceTransform(inside, to_outside_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    cv::distanceTransform(outside, to_inside_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  }
+
+  const cv::Rect& box() const { return box_; }
+
+  // (x, y) in image coordinates inside box(); `inside`: the mask's value there.
+  float ToOtherSide(int x, int y, bool inside) const {
+    return inside ? to_outside_(y - box_.y, x - box_.x) : to_inside_(y - box_.y, x - box_.x);
+  }
+
+ private:
+  cv::Rect box_;
+  cv::Mat1f to_outside_;
+  cv::Mat1f to_inside_;
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
 // GlobalColorModel
 
 GlobalColorModel::GlobalColorModel(const ColorModelOptions& options)
@@ -120,30 +160,20 @@ void GlobalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouet
   BCOT_CHECK(image.size() == silhouette.mask.size());
   if (cv::countNonZero(silhouette.mask) == 0) return;
   const int band = options_.background_band_px;
-  const cv::Rect image_rect(0, 0, image.cols, image.rows);
-  cv::Rect box = cv::boundingRect(silhouette.mask);
-  box = cv::Rect(box.x - band - 1, box.y - band - 1, box.width + 2 * band + 2,
-                 box.height + 2 * band + 2) &
-        image_rect;
-  const cv::Mat1b mask = silhouette.mask(box);
-  // Distance of every outside pixel to the nearest silhouette pixel and of every inside pixel
-  // to the nearest outside one.
-  const cv::Mat1b outside = mask == 0;
-  cv::Mat1f distance_outside;
-  cv::Mat1f distance_inside;
-  cv::distanceTransform(outside, distance_outside, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-  cv::distanceTransform(mask, distance_inside, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  const BoundaryDistances distances(silhouette.mask, band + 1);
+  const cv::Rect& box = distances.box();
   const float margin = static_cast<float>(options_.sample_margin_px);
   std::vector<int> foreground_bins;
   std::vector<int> background_bins;
-  for (int r = 0; r < box.height; ++r) {
-    const cv::Vec3b* colors = image.ptr<cv::Vec3b>(box.y + r) + box.x;
-    for (int c = 0; c < box.width; ++c) {
-      if (mask(r, c) != 0) {
-        if (distance_inside(r, c) > margin) foreground_bins.push_back(histograms_.Bin(colors[c]));
-      } else if (distance_outside(r, c) > margin &&
-                 distance_outside(r, c) <= static_cast<float>(band)) {
-        background_bins.push_back(histograms_.Bin(colors[c]));
+  for (int y = box.y; y < box.y + box.height; ++y) {
+    const cv::Vec3b* colors = image.ptr<cv::Vec3b>(y);
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      const bool inside = silhouette.mask(y, x) != 0;
+      const float distance = distances.ToOtherSide(x, y, inside);
+      if (inside) {
+        if (distance > margin) foreground_bins.push_back(histograms_.Bin(colors[x]));
+      } else if (distance > margin && distance <= static_cast<float>(band)) {
+        background_bins.push_back(histograms_.Bin(colors[x]));
       }
     }
   }
@@ -182,13 +212,11 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
   const double radius = options_.local_region_radius_px;
   const int reach = static_cast<int>(std::ceil(radius));
   const ColorHistograms binner(options_.bins_per_channel);
-  // Distance of every pixel to the other side of the silhouette boundary: pixels within the
-  // sample margin are mixed (anti-aliased, blurred) and not sampled, as in the global model.
-  const cv::Mat1b outside = silhouette.mask == 0;
-  cv::Mat1f distance_outside;
-  cv::Mat1f distance_inside;
-  cv::distanceTransform(outside, distance_outside, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-  cv::distanceTransform(silhouette.mask, distance_inside, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  // Pixels within the sample margin of the silhouette boundary are mixed (anti-aliased,
+  // blurred) and not sampled, as in the global model. Every sampled pixel lies within `reach`
+  // of a contour point, so within reach + 2 px of the mask's bounding box (the box's side).
+  const BoundaryDistances distances(silhouette.mask, reach + 2);
+  const cv::Rect& box = distances.box();
   const float margin = static_cast<float>(options_.sample_margin_px);
   double arc_since_centre = 0.0;
   for (size_t i = 0; i < silhouette.contour.size(); ++i) {
@@ -214,11 +242,11 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
     std::vector<int> background_bins;
     const int cx = static_cast<int>(std::lround(point.pixel.x()));
     const int cy = static_cast<int>(std::lround(point.pixel.y()));
-    for (int y = std::max(0, cy - reach); y <= std::min(image.rows - 1, cy + reach); ++y) {
-      for (int x = std::max(0, cx - reach); x <= std::min(image.cols - 1, cx + reach); ++x) {
+    for (int y = std::max(box.y, cy - reach); y <= std::min(box.br().y - 1, cy + reach); ++y) {
+      for (int x = std::max(box.x, cx - reach); x <= std::min(box.br().x - 1, cx + reach); ++x) {
         if ((Eigen::Vector2d(x, y) - point.pixel).squaredNorm() > radius * radius) continue;
         const bool inside = silhouette.mask(y, x) != 0;
-        if ((inside ? distance_inside(y, x) : distance_outside(y, x)) <= margin) continue;
+        if (distances.ToOtherSide(x, y, inside) <= margin) continue;
         (inside ? foreground_bins : background_bins).push_back(binner.Bin(image(y, x)));
       }
     }

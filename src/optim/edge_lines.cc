@@ -61,30 +61,40 @@ double NormalPdf(double z) { return kInvSqrt2Pi * std::exp(-0.5 * z * z); }
 
 constexpr int kParams = 6;
 using Params = Eigen::Matrix<double, kParams, 1>;
-using ParamsJacobian = Eigen::Matrix<double, Eigen::Dynamic, kParams>;
+using ParamsMatrix = Eigen::Matrix<double, kParams, kParams>;
 
-// Residuals of the step model with parameters x = (a, g, b, μ, w, k) and, optionally, its
-// Jacobian: a + g·(s − μ0) + b·Φ(z) + k·w·R(z), z = (s − μ)/w, R(z) = z·Φ(z) + φ(z) (the
-// Gaussian-blurred kink max(0, s − μ)/w: the outside trend differs from the inside one by k).
+// The Gauss-Newton normal equations of one evaluation: JᵀJ and Jᵀr.
+struct NormalEquations {
+  ParamsMatrix jtj;
+  Params jtr;
+};
+
+// Residuals of the step model with parameters x = (a, g, b, μ, w, k) and, optionally, the
+// normal equations of its Jacobian: a + g·(s − μ0) + b·Φ(z) + k·w·R(z), z = (s − μ)/w,
+// R(z) = z·Φ(z) + φ(z) (the Gaussian-blurred kink max(0, s − μ)/w: the outside trend differs
+// from the inside one by k). Returns the residual sum of squares.
 double Residuals(const std::vector<double>& s, const std::vector<double>& p, double mu0,
-                 const Params& x, Eigen::VectorXd* r, ParamsJacobian* jacobian) {
+                 const Params& x, NormalEquations* normal) {
   const int m = static_cast<int>(s.size());
   double rss = 0.0;
+  if (normal != nullptr) {
+    normal->jtj.setZero();
+    normal->jtr.setZero();
+  }
+  Params j;
   for (int i = 0; i < m; ++i) {
     const double z = (s[i] - x[3]) / x[4];
     const double cdf = NormalCdf(z);
     const double pdf = NormalPdf(z);
     const double ramp = z * cdf + pdf;
     const double value = x[0] + x[1] * (s[i] - mu0) + x[2] * cdf + x[5] * x[4] * ramp;
-    (*r)[i] = value - p[i];
-    rss += (*r)[i] * (*r)[i];
-    if (jacobian != nullptr) {
-      (*jacobian)(i, 0) = 1.0;
-      (*jacobian)(i, 1) = s[i] - mu0;
-      (*jacobian)(i, 2) = cdf;
-      (*jacobian)(i, 3) = -x[2] * pdf / x[4] - x[5] * cdf;
-      (*jacobian)(i, 4) = -x[2] * pdf * z / x[4] + x[5] * pdf;
-      (*jacobian)(i, 5) = x[4] * ramp;
+    const double r = value - p[i];
+    rss += r * r;
+    if (normal != nullptr) {
+      j << 1.0, s[i] - mu0, cdf, -x[2] * pdf / x[4] - x[5] * cdf,
+          -x[2] * pdf * z / x[4] + x[5] * pdf, x[4] * ramp;
+      normal->jtj.noalias() += j * j.transpose();
+      normal->jtr += r * j;
     }
   }
   return rss;
@@ -139,24 +149,24 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
     x[1] = linear[1];
     x[2] = linear[2];
   }
-  Eigen::VectorXd r(m), r_new(m);
-  ParamsJacobian jacobian(m, kParams);
-  double rss = Residuals(s, p, mu0, x, &r, &jacobian);
+  NormalEquations normal, normal_new;
+  double rss = Residuals(s, p, mu0, x, &normal);
   double lambda = 1e-3;
   bool converged = false;
   for (int iteration = 0; iteration < 30; ++iteration) {
-    const Eigen::Matrix<double, kParams, kParams> jtj = jacobian.transpose() * jacobian;
-    const Params jtr = jacobian.transpose() * r;
-    Eigen::Matrix<double, kParams, kParams> damped = jtj;
-    damped.diagonal() += lambda * jtj.diagonal().cwiseMax(1e-12);
-    const Params delta = -damped.ldlt().solve(jtr);
+    ParamsMatrix damped = normal.jtj;
+    damped.diagonal() += lambda * normal.jtj.diagonal().cwiseMax(1e-12);
+    const Params delta = -damped.ldlt().solve(normal.jtr);
     Params candidate = x + delta;
     if (!candidate.allFinite()) return false;
     candidate[4] = std::max(candidate[4], 0.05);
-    const double rss_new = Residuals(s, p, mu0, candidate, &r_new, nullptr);
+    // The normal equations cost little beside Φ and φ, which they share: evaluated with the
+    // residuals, they are ready when the step is accepted.
+    const double rss_new = Residuals(s, p, mu0, candidate, &normal_new);
     if (rss_new <= rss) {
       x = candidate;
-      rss = Residuals(s, p, mu0, x, &r, &jacobian);
+      rss = rss_new;
+      normal = normal_new;
       lambda = std::max(lambda * 0.3, 1e-9);
       if (std::abs(delta[3]) < 1e-4 && std::abs(delta[4]) < 1e-4) {
         converged = true;
@@ -171,8 +181,7 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
     }
   }
   if (!converged) return false;
-  const Eigen::Matrix<double, kParams, kParams> jtj = jacobian.transpose() * jacobian;
-  Eigen::FullPivLU<Eigen::Matrix<double, kParams, kParams>> lu(jtj);
+  Eigen::FullPivLU<ParamsMatrix> lu(normal.jtj);
   if (!lu.isInvertible()) return false;
   const double noise_variance = rss / std::max(1, m - kParams);
   const double variance = noise_variance * lu.inverse()(3, 3);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "bcot/core/image_io.h"
 #include "bcot/optim/silhouette.h"
@@ -80,16 +81,28 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
                                 cv::Point(static_cast<int>(std::ceil(max_x)) + grow + 1,
                                           static_cast<int>(std::ceil(max_y)) + grow + 1)) &
                        cv::Rect(0, 0, camera.width, camera.height);
+  // The boundary search reads P_f bilinearly at positions within search_radius + step_window
+  // + ⅜ px of a contour point (clamped to the roi), so from pixels within grow − 2 + ⅜ + √2 of
+  // it: P_f is computed within grow + 1 of the rounded contour points only (elsewhere 0, never
+  // read).
+  cv::Mat1b needed = cv::Mat1b::zeros(roi.size());
+  for (const ContourPoint& point : silhouette.contour) {
+    cv::circle(needed,
+               cv::Point(static_cast<int>(std::lround(point.pixel.x())) - roi.x,
+                         static_cast<int>(std::lround(point.pixel.y())) - roi.y),
+               grow + 1, cv::Scalar(255), cv::FILLED);
+  }
   std::vector<Eigen::Vector2i> pixels;
-  pixels.reserve(static_cast<size_t>(roi.area()));
-  for (int y = roi.y; y < roi.y + roi.height; ++y) {
-    for (int x = roi.x; x < roi.x + roi.width; ++x) pixels.emplace_back(x, y);
+  pixels.reserve(static_cast<size_t>(cv::countNonZero(needed)));
+  for (int r = 0; r < roi.height; ++r) {
+    for (int c = 0; c < roi.width; ++c) {
+      if (needed(r, c) != 0) pixels.emplace_back(roi.x + c, roi.y + r);
+    }
   }
   const std::vector<double> posteriors = model->ForegroundPosteriors(image, pixels);
-  cv::Mat1f posterior(roi.height, roi.width);
+  cv::Mat1f posterior = cv::Mat1f::zeros(roi.height, roi.width);
   for (size_t i = 0; i < posteriors.size(); ++i) {
-    posterior(static_cast<int>(i) / roi.width, static_cast<int>(i) % roi.width) =
-        static_cast<float>(posteriors[i]);
+    posterior(pixels[i].y() - roi.y, pixels[i].x() - roi.x) = static_cast<float>(posteriors[i]);
   }
   std::vector<cv::Mat1f> colour;
   if (options.edge_weight > 0) {
