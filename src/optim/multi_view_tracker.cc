@@ -97,8 +97,8 @@ void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
         color_models_[v]->UsesContour() ||
         (refine_color_models_[v] != nullptr && refine_color_models_[v]->UsesContour());
     const Silhouette silhouette =
-        uses_contour ? RenderSilhouette(caster_, views_[v].camera, cam_from_template,
-                                        options_.frame.region.contour)
+        uses_contour ? RenderSilhouetteContour(caster_, views_[v].camera, cam_from_template,
+                                               options_.frame.region.contour)
                      : RenderSilhouetteMask(caster_, views_[v].camera, cam_from_template);
     color_models_[v]->Update(images[v], silhouette);
     if (refine_color_models_[v] != nullptr) refine_color_models_[v]->Update(images[v], silhouette);

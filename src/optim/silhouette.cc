@@ -53,6 +53,14 @@ Silhouette RenderSilhouetteMask(const RayCaster& caster, const Camera& camera,
   return RenderMask(caster, camera, cam_from_template, /*points=*/false, 1);
 }
 
+Silhouette RenderSilhouetteContour(const RayCaster& caster, const Camera& camera,
+                                   const Eigen::Isometry3d& cam_from_template,
+                                   const ContourOptions& contour_options) {
+  Silhouette silhouette = RenderMask(caster, camera, cam_from_template, /*points=*/false, 1);
+  silhouette.contour = caster.ExtractContour(camera, cam_from_template, contour_options);
+  return silhouette;
+}
+
 Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
                             const Eigen::Isometry3d& cam_from_template,
                             const ContourOptions& contour_options, int point_stride_px) {

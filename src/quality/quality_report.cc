@@ -52,7 +52,7 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
   BCOT_ASSIGN_OR_RETURN(const cv::Mat3b image, ReadCameraImage(image_path, camera));
   ViewFrameQuality quality;
   const Silhouette silhouette =
-      RenderSilhouette(caster, camera, cam_from_object, QualityContourOptions(options));
+      RenderSilhouetteContour(caster, camera, cam_from_object, QualityContourOptions(options));
   quality.points = static_cast<int>(silhouette.contour.size());
   if (silhouette.contour.empty()) {
     quality.median_px = quality.p90_px = quality.raw_median_px = quality.raw_p90_px = kNaN;

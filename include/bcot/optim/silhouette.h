@@ -36,6 +36,13 @@ Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
                             const Eigen::Isometry3d& cam_from_template,
                             const ContourOptions& contour_options = {}, int point_stride_px = 1);
 
+// The mask and contour of RenderSilhouette without per-pixel model points (view.point_in_object
+// empty; the mask from occlusion rays): for consumers that read the mask and the contour only
+// (colour models, the quality check), saving a closest-hit ray per pixel.
+Silhouette RenderSilhouetteContour(const RayCaster& caster, const Camera& camera,
+                                   const Eigen::Isometry3d& cam_from_template,
+                                   const ContourOptions& contour_options = {});
+
 // The mask and render of RenderSilhouette without the contour (left empty): for consumers that
 // only read the mask (ColorModel::UsesContour() false), saving the contour extraction.
 Silhouette RenderSilhouetteMask(const RayCaster& caster, const Camera& camera,
