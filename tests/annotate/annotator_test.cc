@@ -87,7 +87,7 @@ TEST_F(AnnotatorTest, AnnotatesASyntheticSequenceCloseToGroundTruth) {
   const StatusOr<std::string> config = ReadTextFile(out_dir + "/config.resolved.yaml");
   ASSERT_TRUE(config.ok());
   EXPECT_THAT(*config, HasSubstr("input_hash:"));
-  EXPECT_THAT(*config, HasSubstr("rounds: 5"));
+  EXPECT_THAT(*config, HasSubstr("rounds: 2"));
 }
 
 TEST_F(AnnotatorTest, MonocularSelectionUsesOneCamera) {

@@ -5,8 +5,9 @@
 // (cam0, cam1), 640×480, the bunny, 16 frames. Each benchmark iteration tracks the next frame
 // (images decoded beforehand); after the last frame the tracker is reset to the ground truth of
 // frame 0 outside the timed region. Settings: configs/track.yaml (1 round) and
-// configs/annotate.yaml (5 rounds; the temporal window is not part of Track). TBB is limited to
-// one thread: the single-core figure. Benchmarks time; tests never check wall time.
+// configs/annotate.yaml (2 rounds and the edge stage; the temporal window is not part of Track).
+// TBB is limited to one thread: the single-core figure. Benchmarks time; tests never check wall
+// time.
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 #include <unistd.h>

@@ -104,7 +104,7 @@ TEST_F(BatchCommandTest, KilledMidWayRerunFinishesWithoutRedoingFinishedSequence
   const std::string out = work.File("out");
   const std::string binary = test::BcotBinary();
   const std::string root = dir_->File("root");
-  // The annotation setting (5 rounds) on one job, so sequences finish one after another.
+  // The annotation setting (edge stage, window) on one job, so sequences finish one after another.
   std::vector<std::string> args = {
       binary,   "batch", root,      "--out",    out,
       "--jobs", "1",     "--quiet", "--config", test::SourcePath("configs/annotate.yaml")};

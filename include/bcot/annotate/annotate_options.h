@@ -29,9 +29,9 @@
 // Every option is declared once in AnnotateOptionSchema() (key, field, unit, rule, help; see
 // bcot/core/option_schema.h): unknown keys, wrong types and out-of-range values are
 // kInvalidConfig errors naming file:line: section.key (or `--set section.key`), and
-// `bcot annotate --help` lists them. configs/annotate.yaml is the annotation setting (5 rounds ×
-// 7 iterations), configs/track.yaml the tracking setting (1 round). FormatAnnotateOptions writes
-// every option; reading it back gives the same options.
+// `bcot annotate --help` lists them. configs/annotate.yaml is the annotation setting (2 rounds ×
+// 7 iterations, the edge stage, the window), configs/track.yaml the tracking setting (1 round).
+// FormatAnnotateOptions writes every option; reading it back gives the same options.
 #pragma once
 
 #include <yaml-cpp/yaml.h>

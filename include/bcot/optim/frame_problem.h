@@ -1,7 +1,8 @@
 // One frame, all views: the joint region energy of DESIGN.md "Joint energy" (paper eq. 7–8,
 // S.20–22) minimised by Ceres over ONE parameter block rig_from_objcentre (Se3Manifold, the
 // object-centred update of eq. 4), coarse to fine and then in rounds (DESIGN.md "Rounds";
-// supplement §C.1: annotation 5 rounds × 7 iterations):
+// supplement §C.1: annotation 5 rounds × 7 iterations; configs/annotate.yaml runs 2 before
+// the edge stage, which places the contour):
 //
 //   for level l = levels−1 .. 1, then `rounds` times at level 0:
 //     every view: ray-cast the silhouette at the current pose (Embree), build its
@@ -88,7 +89,7 @@ struct EdgeRefineOptions {
 
 struct FrameProblemOptions {
   // Rounds at full resolution (each re-renders the templates at the current pose); >= 1.
-  // Annotation: 5.
+  // Annotation: 2 (then the edge stage; the paper ran 5, docs/notes/issue19_speed.md).
   int rounds = 5;
   // Ceres iterations per coarse level and per round; >= 1. Annotation: 7.
   int iterations = 7;
