@@ -292,6 +292,10 @@ void DeclareColorAndTracker(OptionSchema<AnnotateOptions>* s) {
        "frame 0: at most this many {learn colours, solve} passes")
       .Range(AtLeast(1));
   s->Add(
+       "tracker.bootstrap_rounds", [](auto& o) -> auto& { return o.tracker.bootstrap_rounds; }, "",
+       "full-resolution rounds of each bootstrap solve of frame 0 (0 = frame.rounds)")
+      .Range(NonNegative());
+  s->Add(
        "tracker.bootstrap_converged_deg",
        [](auto& o) -> auto& { return o.tracker.bootstrap_converged_deg; }, "deg",
        "... stopping once a pass moved the pose less than this")
@@ -435,6 +439,11 @@ Status LayerChecks(const AnnotateOptions& options, const std::string& source_nam
 }
 
 }  // namespace
+
+AnnotateOptions::AnnotateOptions() {
+  tracker.frame.rounds = 2;
+  tracker.bootstrap_rounds = 5;
+}
 
 const OptionSchema<AnnotateOptions>& AnnotateOptionSchema() {
   static const OptionSchema<AnnotateOptions>* const schema = BuildAnnotateOptionSchema();

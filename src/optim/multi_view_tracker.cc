@@ -29,6 +29,9 @@ Status MultiViewTrackerOptions::Validate() const {
     violations.push_back(
         fmt::format("bootstrap_converged_deg = {}, must be > 0", bootstrap_converged_deg));
   }
+  if (bootstrap_rounds < 0) {
+    violations.push_back(fmt::format("bootstrap_rounds = {}, must be >= 0", bootstrap_rounds));
+  }
   if (!(bootstrap_converged_mm > 0.0)) {
     violations.push_back(
         fmt::format("bootstrap_converged_mm = {}, must be > 0", bootstrap_converged_mm));
@@ -51,12 +54,24 @@ StatusOr<std::unique_ptr<MultiViewTracker>> MultiViewTracker::Create(
   return std::unique_ptr<MultiViewTracker>(new MultiViewTracker(caster, std::move(views), options));
 }
 
+namespace {
+
+// The frame options of the bootstrap solves (MultiViewTrackerOptions::bootstrap_rounds).
+FrameProblemOptions BootstrapFrameOptions(const MultiViewTrackerOptions& options) {
+  FrameProblemOptions frame = options.frame;
+  if (options.bootstrap_rounds > 0) frame.rounds = options.bootstrap_rounds;
+  return frame;
+}
+
+}  // namespace
+
 MultiViewTracker::MultiViewTracker(const RayCaster& caster, std::vector<TrackedView> views,
                                    const MultiViewTrackerOptions& options)
     : caster_(caster),
       views_(std::move(views)),
       options_(options),
-      problem_(caster, options.frame) {
+      problem_(caster, options.frame),
+      bootstrap_problem_(caster, BootstrapFrameOptions(options)) {
   color_models_.resize(views_.size());
   refine_color_models_.resize(views_.size());
   for (size_t v = 0; v < views_.size(); ++v) ResetColorModels(v);
@@ -107,14 +122,16 @@ void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
 
 FrameSummary MultiViewTracker::Solve(const std::vector<cv::Mat3b>& images,
                                      Eigen::Isometry3d* rig_from_objcentre,
-                                     std::vector<ViewLinearisation>* linearisations, bool refine) {
+                                     std::vector<ViewLinearisation>* linearisations, bool refine,
+                                     bool bootstrap) {
   std::vector<FrameView> frame_views;
   for (size_t v = 0; v < views_.size(); ++v) {
     frame_views.push_back({&views_[v].camera, views_[v].cam_from_rig, &images[v],
                            color_models_[v].get(), views_[v].weight,
                            refine ? refine_color_models_[v].get() : nullptr});
   }
-  return problem_.Solve(frame_views, rig_from_objcentre, linearisations);
+  return (bootstrap ? bootstrap_problem_ : problem_)
+      .Solve(frame_views, rig_from_objcentre, linearisations);
 }
 
 Status MultiViewTracker::Reset(const std::vector<cv::Mat3b>& images,
@@ -135,7 +152,8 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
   for (int pass = 0; pass < options_.bootstrap_passes; ++pass) {
     const Eigen::Isometry3d before = *rig_from_objcentre;
     LearnColors(images, *rig_from_objcentre, /*fresh=*/true);
-    summary = Solve(images, rig_from_objcentre, linearisations, /*refine=*/false);
+    summary = Solve(images, rig_from_objcentre, linearisations, /*refine=*/false,
+                    /*bootstrap=*/true);
     if (!summary.usable()) break;
     // rig_from_objcentre's translation is the object centre in the rig frame.
     const double moved_deg = RotationDistanceDeg(rig_from_objcentre->linear(), before.linear());
@@ -147,7 +165,8 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
   }
   if (has_refinement_models && summary.usable()) {
     LearnColors(images, *rig_from_objcentre, /*fresh=*/true);
-    summary = Solve(images, rig_from_objcentre, linearisations, /*refine=*/true);
+    summary = Solve(images, rig_from_objcentre, linearisations, /*refine=*/true,
+                    /*bootstrap=*/true);
   }
   previous_rig_from_objcentre_.reset();
   return summary;

@@ -55,6 +55,10 @@ struct ViewSelection {
 };
 
 struct AnnotateOptions {
+  // The optim layer's defaults, except the rounds: 2 per tracked frame (the edge stage then
+  // places the contour) and 5 per bootstrap solve of frame 0 (docs/notes/issue19_speed.md).
+  AnnotateOptions();
+
   MultiViewTrackerOptions tracker;
   ViewSelection views;
   QualityOptions quality;

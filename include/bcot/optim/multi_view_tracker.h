@@ -58,6 +58,13 @@ struct MultiViewTrackerOptions {
   // Convergence thresholds of the bootstrap passes; > 0.
   double bootstrap_converged_deg = 0.05;
   double bootstrap_converged_mm = 0.1;
+  // Full-resolution rounds of each bootstrap solve (frame.rounds replaced); >= 0, 0 = frame.rounds.
+  // Frame 0 starts from a rough pose and the colour models are learned where its solve ends,
+  // so its region energy must converge on its own; a tracked frame starts within a fraction of
+  // a pixel and may stop earlier (the edge stage places the contour). Annotation: 5 here,
+  // frame.rounds 2 (a monocular pinion of the Cycles scenes is lost from frame 0 with 2 bootstrap
+  // rounds, docs/notes/issue19_speed.md).
+  int bootstrap_rounds = 0;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
@@ -100,13 +107,16 @@ class MultiViewTracker {
   void LearnColors(const std::vector<cv::Mat3b>& images,
                    const Eigen::Isometry3d& rig_from_objcentre, bool fresh);
   // One joint solve; `refine` lets the full-resolution rounds use the refinement models.
+  // `bootstrap`: with bootstrap_problem_.
   FrameSummary Solve(const std::vector<cv::Mat3b>& images, Eigen::Isometry3d* rig_from_objcentre,
-                     std::vector<ViewLinearisation>* linearisations, bool refine);
+                     std::vector<ViewLinearisation>* linearisations, bool refine,
+                     bool bootstrap = false);
 
   const RayCaster& caster_;
   std::vector<TrackedView> views_;
   MultiViewTrackerOptions options_;
   FrameProblem problem_;
+  FrameProblem bootstrap_problem_;  // problem_ with bootstrap_rounds
   std::vector<std::unique_ptr<ColorModel>> color_models_;
   // Per view, the model of the full-resolution rounds when color.refine_kind differs from
   // color.kind, else null.
