@@ -120,18 +120,17 @@ void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
   }
 }
 
-FrameSummary MultiViewTracker::Solve(const std::vector<cv::Mat3b>& images,
+FrameSummary MultiViewTracker::Solve(const FrameProblem& problem,
+                                     const std::vector<cv::Mat3b>& images,
                                      Eigen::Isometry3d* rig_from_objcentre,
-                                     std::vector<ViewLinearisation>* linearisations, bool refine,
-                                     bool bootstrap) {
+                                     std::vector<ViewLinearisation>* linearisations, bool refine) {
   std::vector<FrameView> frame_views;
   for (size_t v = 0; v < views_.size(); ++v) {
     frame_views.push_back({&views_[v].camera, views_[v].cam_from_rig, &images[v],
                            color_models_[v].get(), views_[v].weight,
                            refine ? refine_color_models_[v].get() : nullptr});
   }
-  return (bootstrap ? bootstrap_problem_ : problem_)
-      .Solve(frame_views, rig_from_objcentre, linearisations);
+  return problem.Solve(frame_views, rig_from_objcentre, linearisations);
 }
 
 Status MultiViewTracker::Reset(const std::vector<cv::Mat3b>& images,
@@ -152,8 +151,8 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
   for (int pass = 0; pass < options_.bootstrap_passes; ++pass) {
     const Eigen::Isometry3d before = *rig_from_objcentre;
     LearnColors(images, *rig_from_objcentre, /*fresh=*/true);
-    summary = Solve(images, rig_from_objcentre, linearisations, /*refine=*/false,
-                    /*bootstrap=*/true);
+    summary =
+        Solve(bootstrap_problem_, images, rig_from_objcentre, linearisations, /*refine=*/false);
     if (!summary.usable()) break;
     // rig_from_objcentre's translation is the object centre in the rig frame.
     const double moved_deg = RotationDistanceDeg(rig_from_objcentre->linear(), before.linear());
@@ -165,8 +164,8 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
   }
   if (has_refinement_models && summary.usable()) {
     LearnColors(images, *rig_from_objcentre, /*fresh=*/true);
-    summary = Solve(images, rig_from_objcentre, linearisations, /*refine=*/true,
-                    /*bootstrap=*/true);
+    summary =
+        Solve(bootstrap_problem_, images, rig_from_objcentre, linearisations, /*refine=*/true);
   }
   previous_rig_from_objcentre_.reset();
   return summary;
@@ -182,7 +181,8 @@ StatusOr<FrameSummary> MultiViewTracker::Track(const std::vector<cv::Mat3b>& ima
     *rig_from_objcentre =
         PredictPose(*previous_rig_from_objcentre_, last, options_.velocity_prediction);
   }
-  FrameSummary summary = Solve(images, rig_from_objcentre, linearisations, /*refine=*/true);
+  FrameSummary summary =
+      Solve(problem_, images, rig_from_objcentre, linearisations, /*refine=*/true);
   if (summary.usable()) {
     LearnColors(images, *rig_from_objcentre, /*fresh=*/false);
     previous_rig_from_objcentre_ = last;

@@ -106,11 +106,11 @@ class MultiViewTracker {
   // Updates every view's colour models at the pose; `fresh` replaces the models first.
   void LearnColors(const std::vector<cv::Mat3b>& images,
                    const Eigen::Isometry3d& rig_from_objcentre, bool fresh);
-  // One joint solve; `refine` lets the full-resolution rounds use the refinement models.
-  // `bootstrap`: with bootstrap_problem_.
-  FrameSummary Solve(const std::vector<cv::Mat3b>& images, Eigen::Isometry3d* rig_from_objcentre,
-                     std::vector<ViewLinearisation>* linearisations, bool refine,
-                     bool bootstrap = false);
+  // One joint solve by `problem` (problem_ or bootstrap_problem_); `refine` lets the
+  // full-resolution rounds use the refinement models.
+  FrameSummary Solve(const FrameProblem& problem, const std::vector<cv::Mat3b>& images,
+                     Eigen::Isometry3d* rig_from_objcentre,
+                     std::vector<ViewLinearisation>* linearisations, bool refine);
 
   const RayCaster& caster_;
   std::vector<TrackedView> views_;
