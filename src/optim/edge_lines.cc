@@ -58,21 +58,6 @@ constexpr double kInvSqrt2Pi = 0.39894228040143267794;
 
 double NormalCdf(double z) { return 0.5 * std::erfc(-z * kInvSqrt2); }
 
-// Φ(z) and φ(z) from one exponential: Φ(z) = ½·erfc(|z|/√2) for z <= 0, else 1 − that, with
-// erfc(x) = t·(a1 + t·(a2 + t·(a3 + t·(a4 + t·a5))))·e^{−x²}, t = 1/(1 + p·x), x >= 0
-// (Abramowitz & Stegun 7.1.26, |error| <= 1.5e-7, so |ΔΦ| <= 7.5e-8: far below the profile's
-// noise), and e^{−x²} = e^{−z²/2} = √(2π)·φ(z).
-void NormalCdfPdf(double z, double* cdf, double* pdf) {
-  constexpr double kP = 0.3275911;
-  constexpr double kA1 = 0.254829592, kA2 = -0.284496736, kA3 = 1.421413741;
-  constexpr double kA4 = -1.453152027, kA5 = 1.061405429;
-  const double gauss = std::exp(-0.5 * z * z);
-  const double t = 1.0 / (1.0 + kP * std::abs(z) * kInvSqrt2);
-  const double tail = 0.5 * t * (kA1 + t * (kA2 + t * (kA3 + t * (kA4 + t * kA5)))) * gauss;
-  *cdf = z <= 0.0 ? tail : 1.0 - tail;
-  *pdf = kInvSqrt2Pi * gauss;
-}
-
 constexpr int kParams = 6;
 using Params = Eigen::Matrix<double, kParams, 1>;
 using ParamsMatrix = Eigen::Matrix<double, kParams, kParams>;
@@ -83,35 +68,67 @@ struct NormalEquations {
   Params jtr;
 };
 
+// The samples a profile is fitted to, and the work arrays of one evaluation (sized once per
+// fit, so the iterations allocate nothing).
+struct FitSamples {
+  explicit FitSamples(int m)
+      : s(m),
+        u(m),
+        p(m),
+        z(m),
+        gauss(m),
+        t(m),
+        tail(m),
+        cdf(m),
+        pdf(m),
+        ramp(m),
+        residual(m),
+        step_slope(m),
+        j(m, kParams) {}
+
+  Eigen::ArrayXd s;  // offsets along the line (px)
+  Eigen::ArrayXd u;  // s − μ0
+  Eigen::ArrayXd p;  // profile values
+  Eigen::ArrayXd z, gauss, t, tail, cdf, pdf, ramp, residual, step_slope;
+  Eigen::Matrix<double, Eigen::Dynamic, kParams> j;
+};
+
 // Residuals of the step model with parameters x = (a, g, b, μ, w, k) and, optionally, the
-// normal equations of its Jacobian: a + g·(s − μ0) + b·Φ(z) + k·w·R(z), z = (s − μ)/w,
+// normal equations of its Jacobian: a + g·u + b·Φ(z) + k·w·R(z), u = s − μ0, z = (s − μ)/w,
 // R(z) = z·Φ(z) + φ(z) (the Gaussian-blurred kink max(0, s − μ)/w: the outside trend differs
 // from the inside one by k). Returns the residual sum of squares.
-double Residuals(const std::vector<double>& s, const std::vector<double>& p, double mu0,
-                 const Params& x, NormalEquations* normal) {
-  const int m = static_cast<int>(s.size());
-  double rss = 0.0;
+//
+// Φ(z) and φ(z) come from one exponential: Φ(z) = ½·erfc(|z|/√2) for z <= 0, else 1 − that,
+// with erfc(x) = t·(a1 + t·(a2 + t·(a3 + t·(a4 + t·a5))))·e^{−x²}, t = 1/(1 + p·x), x >= 0
+// (Abramowitz & Stegun 7.1.26, |error| <= 1.5e-7, so |ΔΦ| <= 7.5e-8: far below the profile's
+// noise), and e^{−x²} = e^{−z²/2} = √(2π)·φ(z). Array expressions over all samples, so the
+// exponentials are vectorised.
+double Residuals(const Params& x, FitSamples* f, NormalEquations* normal) {
+  constexpr double kP = 0.3275911;
+  constexpr double kA1 = 0.254829592, kA2 = -0.284496736, kA3 = 1.421413741;
+  constexpr double kA4 = -1.453152027, kA5 = 1.061405429;
+  const double inv_w = 1.0 / x[4];
+  f->z = (f->s - x[3]) * inv_w;
+  f->gauss = (-0.5 * f->z.square()).exp();
+  f->t = (1.0 + (kP * kInvSqrt2) * f->z.abs()).inverse();
+  f->tail = 0.5 * f->t * (kA1 + f->t * (kA2 + f->t * (kA3 + f->t * (kA4 + f->t * kA5)))) *
+            f->gauss;  // ½·erfc(|z|/√2)
+  f->cdf = (f->z <= 0.0).select(f->tail, 1.0 - f->tail);
+  f->pdf = kInvSqrt2Pi * f->gauss;
+  f->ramp = f->z * f->cdf + f->pdf;
+  f->residual = x[0] + x[1] * f->u + x[2] * f->cdf + (x[5] * x[4]) * f->ramp - f->p;
   if (normal != nullptr) {
-    normal->jtj.setZero();
-    normal->jtr.setZero();
+    f->step_slope = (x[2] * inv_w) * f->pdf;  // b·φ(z)/w
+    f->j.col(0).setOnes();
+    f->j.col(1) = f->u.matrix();
+    f->j.col(2) = f->cdf.matrix();
+    f->j.col(3) = (-f->step_slope - x[5] * f->cdf).matrix();
+    f->j.col(4) = (-f->step_slope * f->z + x[5] * f->pdf).matrix();
+    f->j.col(5) = (x[4] * f->ramp).matrix();
+    normal->jtj.noalias() = f->j.transpose().lazyProduct(f->j);
+    normal->jtr.noalias() = f->j.transpose().lazyProduct(f->residual.matrix());
   }
-  Params j;
-  for (int i = 0; i < m; ++i) {
-    const double z = (s[i] - x[3]) / x[4];
-    double cdf, pdf;
-    NormalCdfPdf(z, &cdf, &pdf);
-    const double ramp = z * cdf + pdf;
-    const double value = x[0] + x[1] * (s[i] - mu0) + x[2] * cdf + x[5] * x[4] * ramp;
-    const double r = value - p[i];
-    rss += r * r;
-    if (normal != nullptr) {
-      j << 1.0, s[i] - mu0, cdf, -x[2] * pdf / x[4] - x[5] * cdf,
-          -x[2] * pdf * z / x[4] + x[5] * pdf, x[4] * ramp;
-      normal->jtj.noalias() += j * j.transpose();
-      normal->jtr += r * j;
-    }
-  }
-  return rss;
+  return f->residual.square().sum();
 }
 
 }  // namespace
@@ -145,6 +162,10 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
   }
   const int m = static_cast<int>(s.size());
   if (m < 8) return false;
+  FitSamples samples(m);
+  samples.s = Eigen::Map<const Eigen::ArrayXd>(s.data(), m);
+  samples.u = samples.s - mu0;
+  samples.p = Eigen::Map<const Eigen::ArrayXd>(p.data(), m);
 
   // Initial (a, g, b) by linear least squares at μ = μ0, w = 0.7, k = 0.
   Params x;
@@ -164,19 +185,23 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
     x[2] = linear[2];
   }
   NormalEquations normal, normal_new;
-  double rss = Residuals(s, p, mu0, x, &normal);
+  double rss = Residuals(x, &samples, &normal);
   double lambda = 1e-3;
   bool converged = false;
   for (int iteration = 0; iteration < 30; ++iteration) {
     ParamsMatrix damped = normal.jtj;
     damped.diagonal() += lambda * normal.jtj.diagonal().cwiseMax(1e-12);
-    const Params delta = -damped.ldlt().solve(normal.jtr);
+    // λ > 0 makes the damped matrix positive definite; LDLT is the fallback for round-off.
+    const Eigen::LLT<ParamsMatrix> cholesky(damped);
+    const Params delta = cholesky.info() == Eigen::Success
+                             ? Params(-cholesky.solve(normal.jtr))
+                             : Params(-damped.ldlt().solve(normal.jtr));
     Params candidate = x + delta;
     if (!candidate.allFinite()) return false;
     candidate[4] = std::max(candidate[4], 0.05);
     // The normal equations cost little beside Φ and φ, which they share: evaluated with the
     // residuals, they are ready when the step is accepted.
-    const double rss_new = Residuals(s, p, mu0, candidate, &normal_new);
+    const double rss_new = Residuals(candidate, &samples, &normal_new);
     if (rss_new <= rss) {
       x = candidate;
       rss = rss_new;
