@@ -1,19 +1,34 @@
-// Tiny benchmark trees on disk for the layout, evaluator and eval-command tests.
+// Benchmark test data: scored frames for the metrics and report tests, and tiny benchmark trees
+// on disk for the layout, evaluator and eval-command tests.
 #pragma once
 
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
 #include <filesystem>
+#include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
 #include "bcot/core/se3.h"
 #include "bcot/core/status.h"
+#include "bcot/eval/metrics.h"
 #include "test_util.h"
 
 namespace bcot::test {
+
+// A frame of an object with d = 100 mm and the given rotation (deg), translation (mm) and ADD
+// (mm) errors, lost when it fails the 5°/5 cm reset test; `time_ms` NaN = no tracker time.
+inline ScoredFrame MakeScoredFrame(double deg, double mm, double add_mm,
+                                   double time_ms = std::numeric_limits<double>::quiet_NaN()) {
+  ScoredFrame frame;
+  frame.errors = {deg, mm, add_mm};
+  frame.diameter_mm = 100.0;
+  frame.time_ms = time_ms;
+  frame.lost = deg > 5.0 || mm > 50.0;
+  return frame;
+}
 
 // A 100 mm cube (d = 100) as OBJ text, template frame = its centre.
 inline std::string CubeObj() {

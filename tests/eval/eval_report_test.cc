@@ -9,24 +9,20 @@
 
 #include "bcot/core/file_util.h"
 #include "bcot/core/status.h"
+#include "benchmark_test_data.h"
 #include "test_util.h"
 
 namespace bcot {
 namespace {
 
+using test::MakeScoredFrame;
 using ::testing::HasSubstr;
 
 std::vector<SequenceResult> TwoSequences() {
-  auto frame = [](double deg, double mm, double add_mm, double time_ms) {
-    ScoredFrame f;
-    f.errors = {deg, mm, add_mm};
-    f.diameter_mm = 100.0;
-    f.time_ms = time_ms;
-    f.lost = deg > 5.0 || mm > 50.0;
-    return f;
-  };
-  SequenceResult a{"indoor", "Cat", {frame(1, 1, 1, 10), frame(6, 1, 20, 20)}, 1};
-  SequenceResult b{"outdoor, 1", "3D <Touch>", {frame(1, 30, 4, 30), frame(1, 1, 1, 40)}, 0};
+  SequenceResult a{
+      "indoor", "Cat", {MakeScoredFrame(1, 1, 1, 10), MakeScoredFrame(6, 1, 20, 20)}, 1};
+  SequenceResult b{
+      "outdoor, 1", "3D <Touch>", {MakeScoredFrame(1, 30, 4, 30), MakeScoredFrame(1, 1, 1, 40)}, 0};
   return {a, b};
 }
 

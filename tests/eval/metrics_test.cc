@@ -4,14 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 
 #include "bcot/core/se3.h"
+#include "benchmark_test_data.h"
 
 namespace bcot {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using test::MakeScoredFrame;
 
 Eigen::Matrix3d RotZ(double deg) { return ExpSO3(Eigen::Vector3d(0, 0, deg * kPi / 180.0)); }
 
@@ -72,22 +72,13 @@ TEST(MetricsTest, AFrameFailsOnlyWhenStrictlyGreater) {
   EXPECT_TRUE(IsTrackingFailure(errors, 5.0, 50.0));
 }
 
-ScoredFrame Frame(double deg, double mm, double add_mm, double time_ms = kNaN) {
-  ScoredFrame frame;
-  frame.errors = {deg, mm, add_mm};
-  frame.diameter_mm = 100.0;
-  frame.time_ms = time_ms;
-  frame.lost = deg > 5.0 || mm > 50.0;
-  return frame;
-}
-
 TEST(MetricsTest, SummaryColumnsOnAHandComputedSet) {
   // d = 100 mm: ADD thresholds 2, 5, 10 mm.
   const std::vector<ScoredFrame> frames = {
-      Frame(1.0, 10.0, 2.0, 4.0),   // passes everything (ADD = 0.02d exactly)
-      Frame(3.0, 30.0, 5.0, 6.0),   // ADD-0.05d, 0.1d, 5°5cm, 5°, 5cm
-      Frame(6.0, 15.0, 10.5),       // 5cm, 2cm (fails 5° → lost), ADD none; no time
-      Frame(1.5, 60.0, 50.0, 8.0),  // 2°, 5°; lost (translation)
+      MakeScoredFrame(1.0, 10.0, 2.0, 4.0),   // passes everything (ADD = 0.02d exactly)
+      MakeScoredFrame(3.0, 30.0, 5.0, 6.0),   // ADD-0.05d, 0.1d, 5°5cm, 5°, 5cm
+      MakeScoredFrame(6.0, 15.0, 10.5),       // 5cm, 2cm (fails 5° → lost), ADD none; no time
+      MakeScoredFrame(1.5, 60.0, 50.0, 8.0),  // 2°, 5°; lost (translation)
   };
   const MetricSummary s = Summarize(frames);
   EXPECT_EQ(s.num_frames, 4);
@@ -111,18 +102,18 @@ TEST(MetricsTest, SummaryColumnsOnAHandComputedSet) {
 TEST(MetricsTest, SuccessCurveAndAuc) {
   CurveOptions curve;  // 0..0.1d in 100 steps
   // ADD = 0: success 100 at every threshold, AUC 100.
-  MetricSummary s = Summarize({Frame(0, 0, 0.0)}, curve);
+  MetricSummary s = Summarize({MakeScoredFrame(0, 0, 0.0)}, curve);
   ASSERT_EQ(s.curve_thresholds_d.size(), 101u);
   EXPECT_DOUBLE_EQ(s.curve_success_percent.front(), 100.0);
   EXPECT_DOUBLE_EQ(s.add_auc, 100.0);
   // ADD = 0.05d: 0 below τ = 0.05d, 100 from there; the trapezoid over the step [0.049, 0.05]
   // adds half a bin: AUC = (0.5·0.001 + 0.05)/0.1 · 100 = 50.5.
-  s = Summarize({Frame(0, 0, 5.0)}, curve);
+  s = Summarize({MakeScoredFrame(0, 0, 5.0)}, curve);
   EXPECT_DOUBLE_EQ(s.curve_success_percent[49], 0.0);
   EXPECT_DOUBLE_EQ(s.curve_success_percent[50], 100.0);
   EXPECT_NEAR(s.add_auc, 50.5, 1e-9);
   // Two frames, one never within 0.1d: half of that.
-  s = Summarize({Frame(0, 0, 5.0), Frame(0, 0, 20.0)}, curve);
+  s = Summarize({MakeScoredFrame(0, 0, 5.0), MakeScoredFrame(0, 0, 20.0)}, curve);
   EXPECT_NEAR(s.add_auc, 25.25, 1e-9);
   EXPECT_TRUE(std::isnan(s.columns[kNumMetricColumns - 1]));  // no times
 }

@@ -14,6 +14,13 @@ using ::testing::HasSubstr;
 
 constexpr char kHeader[] = "r11\tr12\tr13\tr21\tr22\tr23\tr31\tr32\tr33\tt1\tt2\tt3\n";
 
+// The lines of an RBOT pose file below its header: one pose per line.
+std::string PoseLines(const std::vector<Eigen::Isometry3d>& poses) {
+  std::string lines;
+  for (const Eigen::Isometry3d& pose : poses) lines += FormatPoseLine(pose) + "\n";
+  return lines;
+}
+
 TEST(RbotLayoutTest, CalibrationWithAndWithoutHeader) {
   test::TempDir dir;
   test::WriteText(
@@ -37,8 +44,7 @@ TEST(RbotLayoutTest, CalibrationWithAndWithoutHeader) {
 TEST(RbotLayoutTest, PosesWithAndWithoutHeaderAreTheSameAndErrorsCountTheHeaderLine) {
   test::TempDir dir;
   const auto poses = test::MakeTrajectory(4);
-  std::string body;
-  for (const auto& pose : poses) body += FormatPoseLine(pose) + "\n";
+  const std::string body = PoseLines(poses);
   test::WriteText(dir.File("with.txt"), kHeader + body);
   test::WriteText(dir.File("without.txt"), body);
   const StatusOr<std::vector<Eigen::Isometry3d>> with = ReadRbotPoses(dir.File("with.txt"));
@@ -58,10 +64,7 @@ TEST(RbotLayoutTest, PosesWithAndWithoutHeaderAreTheSameAndErrorsCountTheHeaderL
 
 TEST(RbotLayoutTest, LoadsBodiesOfOneVariant) {
   test::TempDir dir;
-  const auto poses = test::MakeTrajectory(3);
-  std::string body;
-  for (const auto& pose : poses) body += FormatPoseLine(pose) + "\n";
-  test::WriteText(dir.File("poses_first.txt"), kHeader + body);
+  test::WriteText(dir.File("poses_first.txt"), kHeader + PoseLines(test::MakeTrajectory(3)));
   test::WriteText(dir.File("camera_calibration.txt"), "fx\tfy\tcx\tcy\n650\t647\t324\t257\n");
   for (const char* name : {"squirrel", "ape"}) {
     test::WriteText(dir.File(std::string(name) + "/" + name + ".obj"), test::CubeObj());

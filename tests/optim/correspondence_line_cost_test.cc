@@ -252,11 +252,8 @@ class SparseEnergyConvergenceTest : public test::BunnyCasterTest,
 // (sparse measured 0.05–0.39° / 0.10–0.57 mm, combined 0.09–0.28° / 0.10–0.41 mm).
 TEST_P(SparseEnergyConvergenceTest, RecoversAPerturbedFrame) {
   const test::BinocularScene scene;
-  const std::vector<cv::Mat3b> images = {
-      test::RenderTestImage(*caster_, scene.camera0, scene.cam0_from_rig * scene.rig_from_objcentre,
-                            11),
-      test::RenderTestImage(*caster_, scene.camera1, scene.cam1_from_rig * scene.rig_from_objcentre,
-                            12)};
+  const std::vector<cv::Mat3b> images =
+      test::RenderViews(*caster_, scene, scene.rig_from_objcentre, 11);
   MultiViewTrackerOptions options;
   options.frame.energy = GetParam();
   for (bool binocular : {true, false}) {

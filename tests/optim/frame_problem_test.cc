@@ -11,7 +11,9 @@ namespace {
 
 using ::testing::HasSubstr;
 
-TEST(FrameProblemOptionsTest, DefaultsAreValid) { EXPECT_TRUE(FrameProblemOptions().Validate().ok()); }
+TEST(FrameProblemOptionsTest, DefaultsAreValid) {
+  EXPECT_TRUE(FrameProblemOptions().Validate().ok());
+}
 
 TEST(FrameProblemOptionsTest, ValidateListsEveryViolation) {
   FrameProblemOptions options;
@@ -32,30 +34,33 @@ TEST(FrameProblemOptionsTest, ValidateListsEveryViolation) {
 }
 
 class FrameProblemTest : public test::BunnyCasterTest {
+ protected:
+  // Teaches `model` the colours of `image`, seen by `camera` at `cam_from_rig`, with the object
+  // at the truth of `scene`.
+  static void LearnAtTruth(const test::BinocularScene& scene, const Camera& camera,
+                           const Eigen::Isometry3d& cam_from_rig, const cv::Mat3b& image,
+                           GlobalColorModel* model) {
+    model->Update(image, RenderSilhouette(*caster_, camera,
+                                          cam_from_rig * scene.rig_from_objcentre *
+                                              mesh_->objcentre_from_template()));
+  }
 };
 
 // Starting at the truth with colour models learned there, the solve stays within the energy's
 // own bias (pixel sampling, noise) of it and lowers the energy.
 TEST_F(FrameProblemTest, StartingAtTheTruthStaysThere) {
   const test::BinocularScene scene;
-  const cv::Mat3b image0 = test::RenderTestImage(
-      *caster_, scene.camera0, scene.cam0_from_rig * scene.rig_from_objcentre, 41);
-  const cv::Mat3b image1 = test::RenderTestImage(
-      *caster_, scene.camera1, scene.cam1_from_rig * scene.rig_from_objcentre, 42);
+  const std::vector<cv::Mat3b> images =
+      test::RenderViews(*caster_, scene, scene.rig_from_objcentre, 41);
   GlobalColorModel model0{ColorModelOptions()};
   GlobalColorModel model1{ColorModelOptions()};
-  const Eigen::Isometry3d objcentre_from_template = mesh_->objcentre_from_template();
-  model0.Update(image0, RenderSilhouette(*caster_, scene.camera0,
-                                         scene.cam0_from_rig * scene.rig_from_objcentre *
-                                             objcentre_from_template));
-  model1.Update(image1, RenderSilhouette(*caster_, scene.camera1,
-                                         scene.cam1_from_rig * scene.rig_from_objcentre *
-                                             objcentre_from_template));
+  LearnAtTruth(scene, scene.camera0, scene.cam0_from_rig, images[0], &model0);
+  LearnAtTruth(scene, scene.camera1, scene.cam1_from_rig, images[1], &model1);
   const FrameProblem problem(*caster_, FrameProblemOptions());
   Eigen::Isometry3d pose = scene.rig_from_objcentre;
   const FrameSummary summary =
-      problem.Solve({{&scene.camera0, scene.cam0_from_rig, &image0, &model0, 1.0},
-                     {&scene.camera1, scene.cam1_from_rig, &image1, &model1, 1.0}},
+      problem.Solve({{&scene.camera0, scene.cam0_from_rig, &images[0], &model0, 1.0},
+                     {&scene.camera1, scene.cam1_from_rig, &images[1], &model1, 1.0}},
                     &pose);
   ASSERT_TRUE(summary.usable()) << summary.message;
   EXPECT_GE(summary.rounds, 1);
@@ -86,23 +91,19 @@ TEST_F(FrameProblemTest, ObjectOutsideEveryViewIsNotVisibleAndLeavesThePose) {
 
 TEST_F(FrameProblemTest, ZeroWeightViewContributesNothing) {
   const test::BinocularScene scene;
-  const cv::Mat3b image0 = test::RenderTestImage(
-      *caster_, scene.camera0, scene.cam0_from_rig * scene.rig_from_objcentre, 31);
-  const cv::Mat3b image1 = test::RenderTestImage(
-      *caster_, scene.camera1, scene.cam1_from_rig * scene.rig_from_objcentre, 32);
+  const std::vector<cv::Mat3b> images =
+      test::RenderViews(*caster_, scene, scene.rig_from_objcentre, 31);
   GlobalColorModel model0{ColorModelOptions()};
   GlobalColorModel model1{ColorModelOptions()};
-  model0.Update(image0, RenderSilhouette(*caster_, scene.camera0,
-                                         scene.cam0_from_rig * scene.rig_from_objcentre *
-                                             mesh_->objcentre_from_template()));
+  LearnAtTruth(scene, scene.camera0, scene.cam0_from_rig, images[0], &model0);
   FrameProblemOptions options;
   options.rounds = 1;
   const FrameProblem problem(*caster_, options);
   Eigen::Isometry3d pose = scene.rig_from_objcentre;
-  const FrameSummary summary = problem.Solve(
-      {{&scene.camera0, scene.cam0_from_rig, &image0, &model0, 1.0},
-       {&scene.camera1, scene.cam1_from_rig, &image1, &model1, 0.0}},
-      &pose);
+  const FrameSummary summary =
+      problem.Solve({{&scene.camera0, scene.cam0_from_rig, &images[0], &model0, 1.0},
+                     {&scene.camera1, scene.cam1_from_rig, &images[1], &model1, 0.0}},
+                    &pose);
   ASSERT_TRUE(summary.usable()) << summary.message;
   EXPECT_GT(summary.views[0].pixels, 0);
   EXPECT_EQ(summary.views[1].pixels, 0);

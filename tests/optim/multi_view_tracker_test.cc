@@ -16,6 +16,7 @@
 namespace bcot {
 namespace {
 
+using test::RenderViews;
 using ::testing::HasSubstr;
 
 class MultiViewTrackerTest : public test::BunnyCasterTest {
@@ -48,14 +49,6 @@ std::vector<MultiViewTrackerOptions> ColorModelVariants() {
     }
   }
   return variants;
-}
-
-std::vector<cv::Mat3b> RenderViews(const RayCaster& caster, const test::BinocularScene& scene,
-                                   const Eigen::Isometry3d& rig_from_objcentre, unsigned seed) {
-  return {
-      test::RenderTestImage(caster, scene.camera0, scene.cam0_from_rig * rig_from_objcentre, seed),
-      test::RenderTestImage(caster, scene.camera1, scene.cam1_from_rig * rig_from_objcentre,
-                            seed + 1)};
 }
 
 TEST(MultiViewTrackerOptionsTest, ValidateListsEveryViolation) {

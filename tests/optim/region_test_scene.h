@@ -219,4 +219,14 @@ struct BinocularScene {
   }
 };
 
+// The test images of the object at `rig_from_objcentre` in camera 0 and camera 1 of `scene`,
+// with noise seeds `seed` and `seed + 1`.
+inline std::vector<cv::Mat3b> RenderViews(const RayCaster& caster, const BinocularScene& scene,
+                                          const Eigen::Isometry3d& rig_from_objcentre,
+                                          unsigned seed) {
+  return {
+      RenderTestImage(caster, scene.camera0, scene.cam0_from_rig * rig_from_objcentre, seed),
+      RenderTestImage(caster, scene.camera1, scene.cam1_from_rig * rig_from_objcentre, seed + 1)};
+}
+
 }  // namespace bcot::test
