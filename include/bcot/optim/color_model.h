@@ -179,10 +179,10 @@ class LocalColorModel final : public ColorModel {
   std::vector<ActiveRegion> active_;
 };
 
-// The model `options.kind` asks for. `options` must be valid (CHECKed).
 // The options of the refinement model: `options` with kind = refine_kind (unset: unchanged).
 ColorModelOptions RefineColorModelOptions(const ColorModelOptions& options);
 
+// The model `options.kind` asks for. `options` must be valid (CHECKed).
 std::unique_ptr<ColorModel> MakeColorModel(const ColorModelOptions& options,
                                            double object_diameter_mm);
 
