@@ -211,13 +211,18 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "px", "half-length of the profile sampled along each line")
       .Range(Closed(2, 50));
   s->Add(
+       "edge.step_px", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.step_px; }, "px",
+       "sample spacing of the profile along each line")
+      .Range(Positive());
+  s->Add(
        "edge.fit_half_px", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.fit_half_px; },
        "px", "half-width of the blurred-step fit around the steepest point")
       .Check([](const AnnotateOptions& o) {
+        // FitEdgeProfile needs at least 8 samples in its window.
         const EdgeLineOptions& lines = o.tracker.frame.edge.lines;
-        return lines.fit_half_px > lines.step_px && lines.fit_half_px <= lines.window_px
+        return lines.fit_half_px >= 3.5 * lines.step_px && lines.fit_half_px <= lines.window_px
                    ? ""
-                   : "must be in (0.25, edge.window_px]";
+                   : "must be in [3.5 × edge.step_px, edge.window_px] (the fit needs 8 samples)";
       });
   s->Add(
        "edge.min_snr", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.min_snr; }, "",
@@ -443,6 +448,7 @@ Status LayerChecks(const AnnotateOptions& options, const std::string& source_nam
 AnnotateOptions::AnnotateOptions() {
   tracker.frame.rounds = 2;
   tracker.bootstrap_rounds = 5;
+  tracker.frame.edge.lines.step_px = 0.5;
 }
 
 const OptionSchema<AnnotateOptions>& AnnotateOptionSchema() {
