@@ -448,7 +448,6 @@ Status LayerChecks(const AnnotateOptions& options, const std::string& source_nam
 AnnotateOptions::AnnotateOptions() {
   tracker.frame.rounds = 2;
   tracker.bootstrap_rounds = 5;
-  tracker.frame.edge.lines.step_px = 0.5;
 }
 
 const OptionSchema<AnnotateOptions>& AnnotateOptionSchema() {

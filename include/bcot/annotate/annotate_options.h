@@ -56,8 +56,7 @@ struct ViewSelection {
 
 struct AnnotateOptions {
   // The optim layer's defaults, except the rounds: 2 per tracked frame (the edge stage then
-  // places the contour) and 5 per bootstrap solve of frame 0, and the edge profiles sampled
-  // every 0.5 px instead of 0.25 (docs/notes/issue19_speed.md).
+  // places the contour) and 5 per bootstrap solve of frame 0 (docs/notes/issue19_speed.md).
   AnnotateOptions();
 
   MultiViewTrackerOptions tracker;
