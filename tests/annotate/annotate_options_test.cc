@@ -125,6 +125,20 @@ TEST(AnnotateOptionsTest, OutOfRangeValuesNameTheirLineAndKey) {
   EXPECT_THAT(color.status().message(), HasSubstr("run.yaml:3: color.sample_margin_px = -1"));
 }
 
+// The blurred-step fit needs 8 samples in its window: edge.step_px and edge.fit_half_px are
+// checked together.
+TEST(AnnotateOptionsTest, EdgeSamplingMustLeaveTheFitEnoughSamples) {
+  const StatusOr<AnnotateOptions> coarse = ReadAnnotateOptions("", {"edge.step_px=0.5"});
+  ASSERT_TRUE(coarse.ok()) << coarse.status().message();
+  EXPECT_EQ(coarse->tracker.frame.edge.lines.step_px, 0.5);
+  const StatusOr<AnnotateOptions> too_coarse = ReadAnnotateOptions("", {"edge.step_px=1"});
+  ASSERT_EQ(too_coarse.status().code(), StatusCode::kInvalidConfig);
+  EXPECT_THAT(too_coarse.status().message(),
+              HasSubstr("edge.fit_half_px = 2.5 (default), must be in [3.5 × edge.step_px"));
+  EXPECT_THAT(ReadAnnotateOptions("", {"edge.step_px=0"}).status().message(),
+              HasSubstr("--set edge.step_px = 0, must be > 0"));
+}
+
 TEST(AnnotateOptionsTest, WrongTypesAndEnumsAreErrors) {
   EXPECT_THAT(ParseText("frame:\n  rounds: many\n").status().message(), HasSubstr("rounds"));
   const StatusOr<AnnotateOptions> form = ParseText("cost:\n  form: squared\n");
