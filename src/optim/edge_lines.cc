@@ -69,7 +69,8 @@ struct NormalEquations {
 };
 
 // The samples a profile is fitted to, and the work arrays of one evaluation (sized once per
-// fit, so the iterations allocate nothing).
+// fit, so the iterations allocate nothing). j is the m×6 Jacobian; its columns of a (ones) and
+// g (u) are constant and set with the samples.
 struct FitSamples {
   explicit FitSamples(int m)
       : s(m),
@@ -119,8 +120,6 @@ double Residuals(const Params& x, FitSamples* f, NormalEquations* normal) {
   f->residual = x[0] + x[1] * f->u + x[2] * f->cdf + (x[5] * x[4]) * f->ramp - f->p;
   if (normal != nullptr) {
     f->step_slope = (x[2] * inv_w) * f->pdf;  // b·φ(z)/w
-    f->j.col(0).setOnes();
-    f->j.col(1) = f->u.matrix();
     f->j.col(2) = f->cdf.matrix();
     f->j.col(3) = (-f->step_slope - x[5] * f->cdf).matrix();
     f->j.col(4) = (-f->step_slope * f->z + x[5] * f->pdf).matrix();
@@ -152,34 +151,32 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
   }
   if (best < 0 || !(steepest < 0.0)) return false;
   const double mu0 = first_offset_px + best * h;
-  std::vector<double> s, p;
+  // The fit window: the samples within fit_half_px of μ0 (a contiguous run, offsets increase).
+  int first = n, last = -1;
   for (int k = 0; k < n; ++k) {
-    const double offset = first_offset_px + k * h;
-    if (std::abs(offset - mu0) <= options.fit_half_px + 1e-9) {
-      s.push_back(offset);
-      p.push_back(values[k]);
+    if (std::abs(first_offset_px + k * h - mu0) <= options.fit_half_px + 1e-9) {
+      first = std::min(first, k);
+      last = k;
     }
   }
-  const int m = static_cast<int>(s.size());
+  const int m = last - first + 1;
   if (m < 8) return false;
   FitSamples samples(m);
-  samples.s = Eigen::Map<const Eigen::ArrayXd>(s.data(), m);
+  for (int i = 0; i < m; ++i) samples.s[i] = first_offset_px + (first + i) * h;
   samples.u = samples.s - mu0;
-  samples.p = Eigen::Map<const Eigen::ArrayXd>(p.data(), m);
+  samples.p = Eigen::Map<const Eigen::ArrayXd>(values.data() + first, m);
+  // The Jacobian's columns of a and g do not depend on the parameters.
+  samples.j.col(0).setOnes();
+  samples.j.col(1) = samples.u.matrix();
 
   // Initial (a, g, b) by linear least squares at μ = μ0, w = 0.7, k = 0.
   Params x;
   x << 0.0, 0.0, 0.0, mu0, 0.7, 0.0;
   {
     Eigen::MatrixXd a(m, 3);
-    Eigen::VectorXd rhs(m);
-    for (int i = 0; i < m; ++i) {
-      a(i, 0) = 1.0;
-      a(i, 1) = s[i] - mu0;
-      a(i, 2) = NormalCdf((s[i] - x[3]) / x[4]);
-      rhs[i] = p[i];
-    }
-    const Eigen::Vector3d linear = a.colPivHouseholderQr().solve(rhs);
+    a.leftCols(2) = samples.j.leftCols(2);
+    for (int i = 0; i < m; ++i) a(i, 2) = NormalCdf((samples.s[i] - x[3]) / x[4]);
+    const Eigen::Vector3d linear = a.colPivHouseholderQr().solve(samples.p.matrix());
     x[0] = linear[0];
     x[1] = linear[1];
     x[2] = linear[2];
