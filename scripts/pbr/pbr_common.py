@@ -77,6 +77,7 @@ DEFAULTS = {
         "noise_sigma": 0.004,         # Gaussian read noise (linear, 0..1)
         "shot_noise_gain": 0.002,     # variance += gain·value
         "jpeg_quality": 0,            # > 0: write 4:2:0 JPEG frames at this quality, else PNG
+        "view_transform": "standard",  # standard: clip, sRGB | linear: clip, codes ∝ light | filmic: Blender's Filmic
     },
 }
 

@@ -6,7 +6,10 @@ Reads Blender's scene-linear, unclipped beauty renders (OpenEXR), applies the le
 (Gaussian, sensor.lens_blur_px), Gaussian + shot noise (seeded per frame and camera), and only
 then clips to the sensor's full scale and encodes sRGB 8-bit (a camera's optics blur the light
 before its pixels saturate: clipping last moves a saturated surface's blurred edge towards the
-darker side, as in real images); writes <camera>/NNNNNN.png (or .jpg, 4:2:0, when
+darker side, as in real images); sensor.view_transform "linear" writes the clipped values
+linearly (a machine-vision camera with its gamma off), "filmic" maps the unclipped values
+through Blender's Filmic view transform instead (its tone curve, as Blender's own file output
+does by default; read from the blender package's OCIO files); writes <camera>/NNNNNN.png (or .jpg, 4:2:0, when
 sensor.jpeg_quality > 0); writes the mask pass's alpha as 16-bit coverage gt/mask/<camera>/NNNNNN.png (65535 =
 fully covered by the annotated object alone, unoccluded) and the contract files (rig.yaml,
 object.yaml + model/, init_pose.txt, timestamps.csv, gt/ poses) from the same plan.
@@ -37,6 +40,83 @@ def srgb_encode(v):
     return np.where(v <= 0.0031308, 12.92 * v, 1.055 * np.power(v, 1 / 2.4) - 0.055)
 
 
+# Blender's OCIO configuration (Debian package `blender`).
+FILMIC_DIR = "/usr/share/blender/datafiles/colormanagement/filmic"
+# Filmic Log's log2 allocation: scene-linear 2^-12.47... .. 2^12.52... onto [0, 1].
+FILMIC_LOG2_MIN, FILMIC_LOG2_MAX = -12.473931188, 12.526068812
+
+
+def read_spi1d(path):
+    """(domain low, domain high, values) of an OCIO .spi1d LUT."""
+    values, low, high, inside = [], 0.0, 1.0, False
+    with open(path) as f:
+        for line in f:
+            fields = line.split()
+            if not fields:
+                continue
+            if fields[0] == "From":
+                low, high = float(fields[1]), float(fields[2])
+            elif fields[0] in ("{", "}"):
+                inside = fields[0] == "{"
+            elif inside:
+                values.append(float(fields[0]))
+    return low, high, np.array(values)
+
+
+def read_spi3d(path):
+    """An OCIO .spi3d LUT as an n×n×n×3 array indexed by (R, G, B)."""
+    with open(path) as f:
+        lines = f.read().split("\n")
+    n = int(lines[2].split()[0])
+    lut = np.zeros((n, n, n, 3))
+    for line in lines[3:]:
+        fields = line.split()
+        if len(fields) == 6:
+            lut[int(fields[0]), int(fields[1]), int(fields[2])] = [float(v) for v in fields[3:]]
+    return lut
+
+
+def trilinear(lut, t):
+    """`lut` (n×n×n×3) at t (...×3 in [0, 1]), trilinear."""
+    n = lut.shape[0]
+    p = np.clip(t, 0.0, 1.0) * (n - 1)
+    i0 = np.minimum(np.floor(p).astype(int), n - 2)
+    f = p - i0
+    out = np.zeros(t.shape)
+    for dr in (0, 1):
+        for dg in (0, 1):
+            for db in (0, 1):
+                w = ((f[..., 0] if dr else 1 - f[..., 0]) * (f[..., 1] if dg else 1 - f[..., 1]) *
+                     (f[..., 2] if db else 1 - f[..., 2]))
+                out += w[..., None] * lut[i0[..., 0] + dr, i0[..., 1] + dg, i0[..., 2] + db]
+    return out
+
+
+class FilmicEncoder:
+    """Blender's "Filmic" view on the sRGB display (config.ocio: Linear -> Filmic Log, i.e. the
+    log2 allocation, filmic_desat65cube.spi3d and a uniform allocation [0, 0.66], then
+    filmic_to_0-70_1-03.spi1d), applied to scene-linear RGB (the 3-D table trilinear, where
+    OCIO's "best" interpolation is tetrahedral)."""
+
+    def __init__(self, directory=FILMIC_DIR):
+        cube = os.path.join(directory, "filmic_desat65cube.spi3d")
+        curve = os.path.join(directory, "filmic_to_0-70_1-03.spi1d")
+        for path in (cube, curve):
+            if not os.path.exists(path):
+                raise RuntimeError(f"{path}: missing (sensor.view_transform 'filmic' needs "
+                                   "Blender's colour management files: scripts/setup.sh "
+                                   "--with-blender)")
+        self.cube = read_spi3d(cube)
+        self.low, self.high, self.curve = read_spi1d(curve)
+
+    def __call__(self, rgb):
+        t = (np.log2(np.maximum(rgb, 2.0 ** FILMIC_LOG2_MIN)) - FILMIC_LOG2_MIN) / (
+            FILMIC_LOG2_MAX - FILMIC_LOG2_MIN)
+        v = trilinear(self.cube, t) / 0.66
+        v = np.clip((v - self.low) / (self.high - self.low), 0.0, 1.0) * (len(self.curve) - 1)
+        return np.clip(np.interp(v, np.arange(len(self.curve)), self.curve), 0.0, 1.0)
+
+
 def encode_image(path, image8, jpeg_quality):
     if jpeg_quality > 0:
         # libjpeg's default chroma subsampling is 4:2:0 (OpenCV 4.6's Python binding has no
@@ -64,6 +144,9 @@ def main():
         plan = json.load(f)
     se = spec["sensor"]
     ext = ".jpg" if se["jpeg_quality"] > 0 else ".png"
+    if se["view_transform"] not in ("standard", "linear", "filmic"):
+        raise ValueError(f"{args.spec}: sensor.view_transform must be standard, linear or filmic")
+    filmic = FilmicEncoder() if se["view_transform"] == "filmic" else None
     for ci, c in enumerate(plan["cameras"]):
         for k in range(plan["frames"]):
             lin = read_linear(os.path.join(args.raw, c["name"], f"{k:06d}.exr"))
@@ -78,7 +161,12 @@ def main():
             rng = np.random.default_rng([int(spec["seed"]), 7001, ci, k])
             sigma = np.sqrt(se["noise_sigma"] ** 2 + se["shot_noise_gain"] * np.maximum(lin, 0))
             lin = lin + sigma * rng.standard_normal(lin.shape)
-            img8 = np.round(srgb_encode(lin) * 255.0).astype(np.uint8)
+            if se["view_transform"] == "linear":
+                img8 = np.round(np.clip(lin, 0.0, 1.0) * 255.0).astype(np.uint8)
+            elif filmic is None:
+                img8 = np.round(srgb_encode(lin) * 255.0).astype(np.uint8)
+            else:  # BGR -> RGB for the LUT and back
+                img8 = np.round(filmic(lin[:, :, ::-1])[:, :, ::-1] * 255.0).astype(np.uint8)
             encode_image(os.path.join(args.out, c["name"], f"{k:06d}{ext}"), img8,
                          se["jpeg_quality"])
             mask = cv2.imread(os.path.join(args.raw, "mask", c["name"], f"{k:06d}.png"),
@@ -100,4 +188,5 @@ def main():
         pc.write_atomic(os.path.join(args.out, "pbr_timing.json"), json.dumps(summary) + "\n")
 
 
-main()
+if __name__ == "__main__":
+    main()

@@ -234,6 +234,46 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "linear level (1 = full scale) from which a colour sample counts as clipped by the "
        "sensor and is left out of that line's contrast (> 1 = never)")
       .Range(Closed(0.5, 2));
+  s->AddChoice(
+       "edge.response", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.response.kind; },
+       Choices<ImageResponse::Kind>{{"srgb", ImageResponse::Kind::kSrgb},
+                                    {"gamma", ImageResponse::Kind::kGamma},
+                                    {"table", ImageResponse::Kind::kTable},
+                                    {"auto", ImageResponse::Kind::kAuto}},
+       "the cameras' response, how 8-bit codes map to linear light (edge stage and quality "
+       "check): srgb, gamma with edge.gamma (1 = a linear machine-vision camera), table "
+       "(edge.response_file), or auto (estimated from the first frame: image_response.yaml)")
+      .Check([](const AnnotateOptions& o) -> std::string {
+        const ImageResponse& response = o.tracker.frame.edge.lines.response;
+        return response.kind == ImageResponse::Kind::kTable && response.table.empty()
+                   ? "table needs edge.response_file"
+                   : "";
+      });
+  s->Add(
+       "edge.gamma", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.response.gamma; }, "",
+       "exponent of edge.response: gamma, linear = (code / 255)^gamma")
+      .Range(Closed(ImageResponse::kMinGamma, ImageResponse::kMaxGamma));
+  s->AddCustom(
+      "edge.response_file", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.response; },
+      [](YamlMap& map, const std::string& base_dir, ImageResponse* response) -> Status {
+        std::string file;
+        BCOT_RETURN_IF_ERROR(map.Get("response_file", &file));
+        if (file.empty()) {  // none (what the resolved config writes without a table)
+          response->table_file.clear();
+          response->table.clear();
+          return Status::Ok();
+        }
+        file = option_internal::ResolvePath(base_dir, file);
+        StatusOr<std::vector<float>> table = ReadResponseTable(file);
+        if (!table.ok()) return map.Error("response_file", table.status().message());
+        response->table_file = file;
+        response->table = std::move(table).value();
+        return Status::Ok();
+      },
+      [](YAML::Emitter& out, const ImageResponse& response) { out << response.table_file; },
+      [](const ImageResponse& response) { return response.table_file; },
+      "file of the measured response of edge.response: table: the linear value of codes 0..255 "
+      "(docs/camera_response.md)");
 }
 
 void DeclareColorAndTracker(OptionSchema<AnnotateOptions>* s) {
@@ -448,6 +488,7 @@ Status LayerChecks(const AnnotateOptions& options, const std::string& source_nam
 AnnotateOptions::AnnotateOptions() {
   tracker.frame.rounds = 2;
   tracker.bootstrap_rounds = 5;
+  tracker.frame.edge.lines.response = ImageResponse::Auto();
 }
 
 const OptionSchema<AnnotateOptions>& AnnotateOptionSchema() {

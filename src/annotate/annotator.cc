@@ -149,6 +149,22 @@ StatusOr<std::vector<TrackedView>> SelectViews(const Rig& rig, const ViewSelecti
   return views;
 }
 
+// What the tracker decoded the edges with, for image_response.yaml.
+ImageResponseRecord ImageResponseRecordOf(const MultiViewTracker& tracker) {
+  ImageResponseRecord record;
+  record.response = tracker.image_response();
+  const std::optional<StatusOr<ResponseEstimate>>& estimate = tracker.response_estimate();
+  if (estimate.has_value() && estimate->ok()) {
+    record.estimated = true;
+    record.scores = (*estimate)->scores;
+  } else if (estimate.has_value()) {
+    record.estimate_error = estimate->status().message();
+  } else if (!tracker.options().frame.edge.lines.response.IsResolved()) {
+    record.estimate_error = "not estimated: no frame was initialised with the edge stage on";
+  }
+  return record;
+}
+
 }  // namespace
 
 std::string FormatFramesCsv(const SequenceAnnotation& annotation) {
@@ -460,6 +476,7 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
       record(frame, std::move(solved));
     }
   }
+  annotation.image_response = ImageResponseRecordOf(**tracker);
   annotation.per_frame_rig_from_object = annotation.rig_from_object;
   if (window) {
     push_held(span.end, window_end);
@@ -483,6 +500,7 @@ Status WriteAnnotation(const std::string& out_dir, const Sequence& sequence,
                        const SequenceAnnotation& annotation) {
   BCOT_RETURN_IF_ERROR(WriteAnnotationPoses(out_dir, sequence.rig, annotation.rig_from_object));
   BCOT_RETURN_IF_ERROR(WriteFileAtomic(out_dir + "/frames.csv", FormatFramesCsv(annotation)));
+  BCOT_RETURN_IF_ERROR(WriteImageResponseFile(out_dir, annotation.image_response));
   const std::string config = FormatAnnotateOptions(options);
   const Provenance provenance = CurrentProvenance(AnnotateConfigHash(options));
   const std::string header = fmt::format(
@@ -548,9 +566,10 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
   BCOT_ASSIGN_OR_RETURN(const SequenceAnnotation annotation,
                         AnnotateSequence(sequence, caster, options, progress));
   BCOT_RETURN_IF_ERROR(WriteAnnotation(out_dir, sequence, options, input_hash, annotation));
-  BCOT_ASSIGN_OR_RETURN(QualityReport quality,
-                        MeasureQuality(sequence, caster, annotation.rig_from_object,
-                                       annotation.view_names, options.quality));
+  BCOT_ASSIGN_OR_RETURN(
+      QualityReport quality,
+      MeasureQuality(sequence, caster, annotation.rig_from_object, annotation.view_names,
+                     options.quality, annotation.image_response.response));
   return FinishAnnotation(out_dir, sequence, caster, options, input_hash,
                           annotation.rig_from_object, std::move(quality), annotation.failed_frames);
 }

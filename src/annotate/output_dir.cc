@@ -7,6 +7,7 @@
 #include <set>
 #include <vector>
 
+#include "bcot/annotate/image_response_file.h"
 #include "bcot/annotate/output_lock.h"
 #include "bcot/core/annotation_poses.h"
 
@@ -54,10 +55,19 @@ Status CheckAnnotationOutputDir(const std::string& out_dir, const std::string& s
         out_dir));
   }
   if (overwrite || !fs::is_directory(out_dir, error)) return Status::Ok();
-  const std::set<std::string> files = {
-      "DONE",         kRigFromObjectFileName, "frames.csv", "config.resolved.yaml", "quality.json",
-      "quality.csv",  "report.html",          "batch.log",  ".batch_config.yaml",   "summary.json",
-      "summary.html", kOutputLockFileName};
+  const std::set<std::string> files = {"DONE",
+                                       kRigFromObjectFileName,
+                                       "frames.csv",
+                                       "config.resolved.yaml",
+                                       "quality.json",
+                                       "quality.csv",
+                                       "report.html",
+                                       "batch.log",
+                                       ".batch_config.yaml",
+                                       "summary.json",
+                                       "summary.html",
+                                       kOutputLockFileName,
+                                       kImageResponseFileName};
   std::set<std::string> cameras;
   for (const RigCamera& camera : rig.cameras()) cameras.insert(camera.camera.name);
   std::string foreign = FirstForeignEntry(out_dir, files, cameras);

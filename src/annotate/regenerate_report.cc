@@ -5,6 +5,7 @@
 #include "bcot/annotate/annotate_options.h"
 #include "bcot/annotate/annotator.h"
 #include "bcot/annotate/done_file.h"
+#include "bcot/annotate/image_response_file.h"
 #include "bcot/core/annotation_poses.h"
 #include "bcot/quality/quality_files.h"
 #include "bcot/render/mesh.h"
@@ -40,8 +41,11 @@ StatusOr<QualityReport> RegenerateQualityReport(const std::string& annotation_di
                         Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
   const RayCaster caster(mesh);
   BCOT_ASSIGN_OR_RETURN(
-      QualityReport report,
-      MeasureQuality(sequence, caster, rig_from_object, options.views.cameras, options.quality));
+      const ImageResponseRecord image_response,
+      RecordedImageResponse(annotation_dir, options.tracker.frame.edge.lines.response));
+  BCOT_ASSIGN_OR_RETURN(QualityReport report,
+                        MeasureQuality(sequence, caster, rig_from_object, options.views.cameras,
+                                       options.quality, image_response.response));
   report.provenance = CurrentProvenance(AnnotateConfigHash(options));
   BCOT_RETURN_IF_ERROR(
       WriteQualityFiles(annotation_dir, report, sequence, caster, rig_from_object));

@@ -97,8 +97,13 @@ StatusOr<AnnotationOutcome> SpliceFrames(const std::string& sequence_dir,
   BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
                         Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
   const RayCaster caster(mesh);
+  // The frames are decoded with the response of the run being spliced into.
+  BCOT_ASSIGN_OR_RETURN(const ImageResponseRecord image_response,
+                        RecordedImageResponse(out_dir, options.tracker.frame.edge.lines.response));
+  AnnotateOptions resolved = options;
+  resolved.tracker.frame.edge.lines.response = image_response.response;
   BCOT_ASSIGN_OR_RETURN(const SequenceAnnotation range,
-                        AnnotateFrames(sequence, caster, options, span, progress));
+                        AnnotateFrames(sequence, caster, resolved, span, progress));
 
   // Splice in memory, measure, then replace the files with DONE last.
   std::vector<Eigen::Isometry3d> rig_from_object = span.existing_rig_from_object;
@@ -112,11 +117,12 @@ StatusOr<AnnotationOutcome> SpliceFrames(const std::string& sequence_dir,
     rig_from_object[span.first + i] = range.rig_from_object[i];
     csv_lines[1 + span.first + i] = range_csv[1 + i];
   }
-  BCOT_ASSIGN_OR_RETURN(
-      const QualityReport quality,
-      MeasureQuality(sequence, caster, rig_from_object, range.view_names, options.quality));
+  BCOT_ASSIGN_OR_RETURN(const QualityReport quality,
+                        MeasureQuality(sequence, caster, rig_from_object, range.view_names,
+                                       options.quality, image_response.response));
   SequenceAnnotation whole;  // what WriteAnnotation needs besides frames.csv
   whole.rig_from_object = rig_from_object;
+  whole.image_response = image_response;
   std::string csv;
   for (const std::string& line : csv_lines) csv += line + "\n";
 

@@ -48,6 +48,14 @@ Status EdgeLineOptions::Validate() const {
   if (!(clip_level > 0.0) || std::isnan(clip_level)) {
     violations.push_back(fmt::format("clip_level = {}, must be > 0", clip_level));
   }
+  if (!response.IsValid()) {
+    violations.push_back(
+        response.kind == ImageResponse::Kind::kTable
+            ? std::string("response table: needs 256 finite, non-decreasing values >= 0 "
+                          "(the last > 0)")
+            : fmt::format("gamma = {}, must be in [{}, {}]", response.gamma,
+                          ImageResponse::kMinGamma, ImageResponse::kMaxGamma));
+  }
   return internal::JoinViolations("edge", violations);
 }
 
@@ -233,9 +241,9 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
   return true;
 }
 
-EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const Eigen::Vector2d& centre,
-                         const Eigen::Vector2d& normal, const EdgeLineOptions& options,
-                         EdgeFit* fit) {
+EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const LinearTable& table,
+                         const Eigen::Vector2d& centre, const Eigen::Vector2d& normal,
+                         const EdgeLineOptions& options, EdgeFit* fit) {
   const double h = options.step_px;
   const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
   if (!CanSampleBilinear(image.size(), centre - half * h * normal) ||
@@ -248,8 +256,8 @@ EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const Eigen::Vector2d& centre,
   int inside_count = 0, outside_count = 0;
   for (int k = -half; k <= half; ++k) {
     const double s = k * h;
-    colors[k + half] = SampleLinearRgb(image, centre + s * normal);
-    peak = peak.cwiseMax(PeakLinearRgb(image, centre + s * normal));
+    colors[k + half] = SampleLinearRgb(image, table, centre + s * normal);
+    peak = peak.cwiseMax(PeakLinearRgb(image, table, centre + s * normal));
     if (s <= -1.0) {
       inside += colors[k + half];
       ++inside_count;
@@ -301,6 +309,9 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
                                              const cv::Mat3b& image, const Silhouette& silhouette,
                                              const EdgeLineOptions& options) {
   BCOT_RETURN_IF_ERROR(options.Validate());
+  if (!options.response.IsResolved()) {
+    return Status::InvalidConfig("edge lines: the image response must be known (not auto)");
+  }
   BCOT_RETURN_IF_ERROR(CheckSilhouetteInputs(camera, image, silhouette));
   CorrespondenceLines result;
   result.rig_from_objcentre = rig_from_objcentre;
@@ -312,6 +323,7 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
   const double h = options.step_px;
   const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
   const cv::Mat1b& mask = silhouette.mask;
+  const LinearTable table(options.response);
   for (int j = 0; j < anchors.size(); ++j) {
     const ContourPoint& point = anchors.point(j);
     ++result.candidates;
@@ -341,7 +353,8 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
       continue;
     }
     EdgeFit fit;
-    if (FitEdgeAcross(image, point.pixel, point.normal, options, &fit) != EdgeAcross::kFound) {
+    if (FitEdgeAcross(image, table, point.pixel, point.normal, options, &fit) !=
+        EdgeAcross::kFound) {
       ++result.rejected_ambiguous;  // off-image windows were rejected above
       continue;
     }

@@ -409,6 +409,7 @@ FrameProblem::FrameProblem(const RayCaster& caster, const FrameProblemOptions& o
     : caster_(caster), options_(options) {
   const Status status = options_.Validate();
   BCOT_CHECK(status.ok());
+  BCOT_CHECK(options_.edge.lines.response.IsResolved());
 }
 
 FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
@@ -489,6 +490,22 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
   }
   *rig_from_objcentre = FromPoseParameters(x.data());
   return summary;
+}
+
+bool FrameProblem::SolveEdges(const std::vector<FrameView>& views,
+                              Eigen::Isometry3d* rig_from_objcentre) const {
+  BCOT_CHECK(rig_from_objcentre != nullptr);
+  for (const FrameView& view : views) {
+    BCOT_CHECK(view.camera != nullptr && view.image != nullptr);
+    BCOT_CHECK(view.image->cols == view.camera->width && view.image->rows == view.camera->height);
+    BCOT_CHECK(view.weight >= 0.0 && std::isfinite(view.weight));
+  }
+  PoseParameters x = ToPoseParameters(*rig_from_objcentre);
+  FrameSummary summary;
+  summary.views.resize(views.size());
+  if (!RefineEdges(views, x.data(), &summary, nullptr)) return false;
+  *rig_from_objcentre = FromPoseParameters(x.data());
+  return true;
 }
 
 bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* parameters,

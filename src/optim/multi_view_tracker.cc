@@ -63,18 +63,29 @@ FrameProblemOptions BootstrapFrameOptions(const MultiViewTrackerOptions& options
   return frame;
 }
 
+// The response edges are decoded with before an estimate: the configured one, or sRGB.
+ImageResponse InitialImageResponse(const MultiViewTrackerOptions& options) {
+  const ImageResponse& configured = options.frame.edge.lines.response;
+  return configured.IsResolved() ? configured : ImageResponse();
+}
+
 }  // namespace
 
 MultiViewTracker::MultiViewTracker(const RayCaster& caster, std::vector<TrackedView> views,
                                    const MultiViewTrackerOptions& options)
-    : caster_(caster),
-      views_(std::move(views)),
-      options_(options),
-      problem_(caster, options.frame),
-      bootstrap_problem_(caster, BootstrapFrameOptions(options)) {
+    : caster_(caster), views_(std::move(views)), options_(options) {
+  UseImageResponse(InitialImageResponse(options));
   color_models_.resize(views_.size());
   refine_color_models_.resize(views_.size());
   for (size_t v = 0; v < views_.size(); ++v) ResetColorModels(v);
+}
+
+void MultiViewTracker::UseImageResponse(const ImageResponse& response) {
+  image_response_ = response;
+  MultiViewTrackerOptions resolved = options_;
+  resolved.frame.edge.lines.response = response;
+  problem_ = std::make_unique<FrameProblem>(caster_, resolved.frame);
+  bootstrap_problem_ = std::make_unique<FrameProblem>(caster_, BootstrapFrameOptions(resolved));
 }
 
 void MultiViewTracker::ResetColorModels(size_t view) {
@@ -120,22 +131,43 @@ void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
   }
 }
 
-FrameSummary MultiViewTracker::Solve(const FrameProblem& problem,
-                                     const std::vector<cv::Mat3b>& images,
-                                     Eigen::Isometry3d* rig_from_objcentre,
-                                     std::vector<ViewLinearisation>* linearisations, bool refine) {
+std::vector<FrameView> MultiViewTracker::FrameViews(const std::vector<cv::Mat3b>& images,
+                                                    bool refine) const {
   std::vector<FrameView> frame_views;
   for (size_t v = 0; v < views_.size(); ++v) {
     frame_views.push_back({&views_[v].camera, views_[v].cam_from_rig, &images[v],
                            color_models_[v].get(), views_[v].weight,
                            refine ? refine_color_models_[v].get() : nullptr});
   }
-  return problem.Solve(frame_views, rig_from_objcentre, linearisations);
+  return frame_views;
+}
+
+FrameSummary MultiViewTracker::Solve(const FrameProblem& problem,
+                                     const std::vector<cv::Mat3b>& images,
+                                     Eigen::Isometry3d* rig_from_objcentre,
+                                     std::vector<ViewLinearisation>* linearisations, bool refine) {
+  return problem.Solve(FrameViews(images, refine), rig_from_objcentre, linearisations);
+}
+
+bool MultiViewTracker::ResolveImageResponse(const std::vector<cv::Mat3b>& images,
+                                            const Eigen::Isometry3d& rig_from_objcentre) {
+  if (options_.frame.edge.lines.response.IsResolved() || !options_.frame.edge.enabled ||
+      response_estimate_.has_value()) {
+    return false;
+  }
+  response_estimate_ =
+      EstimateImageResponse(*problem_, FrameViews(images, false), rig_from_objcentre);
+  if (!response_estimate_->ok() || (*response_estimate_)->response == image_response_) {
+    return false;
+  }
+  UseImageResponse((*response_estimate_)->response);
+  return true;
 }
 
 Status MultiViewTracker::Reset(const std::vector<cv::Mat3b>& images,
                                const Eigen::Isometry3d& rig_from_objcentre) {
   BCOT_RETURN_IF_ERROR(CheckImages(images));
+  ResolveImageResponse(images, rig_from_objcentre);
   LearnColors(images, rig_from_objcentre, /*fresh=*/true);
   previous_rig_from_objcentre_.reset();
   return Status::Ok();
@@ -152,7 +184,7 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
     const Eigen::Isometry3d before = *rig_from_objcentre;
     LearnColors(images, *rig_from_objcentre, /*fresh=*/true);
     summary =
-        Solve(bootstrap_problem_, images, rig_from_objcentre, linearisations, /*refine=*/false);
+        Solve(*bootstrap_problem_, images, rig_from_objcentre, linearisations, /*refine=*/false);
     if (!summary.usable()) break;
     // rig_from_objcentre's translation is the object centre in the rig frame.
     const double moved_deg = RotationDistanceDeg(rig_from_objcentre->linear(), before.linear());
@@ -165,7 +197,13 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
   if (has_refinement_models && summary.usable()) {
     LearnColors(images, *rig_from_objcentre, /*fresh=*/true);
     summary =
-        Solve(bootstrap_problem_, images, rig_from_objcentre, linearisations, /*refine=*/true);
+        Solve(*bootstrap_problem_, images, rig_from_objcentre, linearisations, /*refine=*/true);
+  }
+  if (summary.usable() && ResolveImageResponse(images, *rig_from_objcentre)) {
+    // The frame once more with its edges decoded by the estimate (the colour models are those
+    // of the last solve, learned at a pose within the edge stage's reach).
+    summary = Solve(*bootstrap_problem_, images, rig_from_objcentre, linearisations,
+                    /*refine=*/has_refinement_models);
   }
   previous_rig_from_objcentre_.reset();
   return summary;
@@ -182,7 +220,7 @@ StatusOr<FrameSummary> MultiViewTracker::Track(const std::vector<cv::Mat3b>& ima
         PredictPose(*previous_rig_from_objcentre_, last, options_.velocity_prediction);
   }
   FrameSummary summary =
-      Solve(problem_, images, rig_from_objcentre, linearisations, /*refine=*/true);
+      Solve(*problem_, images, rig_from_objcentre, linearisations, /*refine=*/true);
   if (summary.usable()) {
     LearnColors(images, *rig_from_objcentre, /*fresh=*/false);
     previous_rig_from_objcentre_ = last;

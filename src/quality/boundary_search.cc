@@ -87,7 +87,7 @@ std::vector<double> BoundaryOffsets(const std::vector<ContourPoint>& contour,
 
 RefinedOffsets RefineOffsetsOnEdges(const std::vector<ContourPoint>& contour,
                                     const std::vector<double>& offsets, const cv::Mat3b& image,
-                                    const QualityOptions& options) {
+                                    const LinearTable& linear, const QualityOptions& options) {
   BCOT_CHECK(contour.size() == offsets.size());
   RefinedOffsets result;
   result.offsets.assign(contour.size(), kNaN);
@@ -100,7 +100,7 @@ RefinedOffsets RefineOffsetsOnEdges(const std::vector<ContourPoint>& contour,
     if (!std::isfinite(offsets[i])) continue;
     const Eigen::Vector2d centre = contour[i].pixel + offsets[i] * contour[i].normal;
     EdgeFit fit;
-    if (FitEdgeAcross(image, centre, contour[i].normal, edge, &fit) != EdgeAcross::kFound) {
+    if (FitEdgeAcross(image, linear, centre, contour[i].normal, edge, &fit) != EdgeAcross::kFound) {
       ++result.ambiguous;
       continue;
     }

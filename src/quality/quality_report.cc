@@ -48,7 +48,7 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
                                        const std::string& image_path,
                                        const Eigen::Vector3d& object_centre,
                                        double object_diameter_mm, const QualityOptions& options,
-                                       uint32_t seed) {
+                                       const LinearTable& linear, uint32_t seed) {
   BCOT_ASSIGN_OR_RETURN(const cv::Mat3b image, ReadCameraImage(image_path, camera));
   ViewFrameQuality quality;
   const Silhouette silhouette =
@@ -114,7 +114,8 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
       BoundaryOffsets(silhouette.contour, posterior, roi, options, colour);
   std::vector<double> sigmas;
   if (options.refine_on_edges) {
-    RefinedOffsets refined = RefineOffsetsOnEdges(silhouette.contour, offsets, image, options);
+    RefinedOffsets refined =
+        RefineOffsetsOnEdges(silhouette.contour, offsets, image, linear, options);
     offsets = std::move(refined.offsets);
     sigmas = std::move(refined.sigmas_px);
     quality.ambiguous = refined.ambiguous;
@@ -208,17 +209,23 @@ void Summarize(QualityReport* report) {
 StatusOr<QualityReport> MeasureQuality(const Sequence& sequence,
                                        const std::vector<Eigen::Isometry3d>& rig_from_object,
                                        const std::vector<std::string>& view_names,
-                                       const QualityOptions& options) {
+                                       const QualityOptions& options,
+                                       const ImageResponse& response) {
   BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
                         Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
-  return MeasureQuality(sequence, RayCaster(mesh), rig_from_object, view_names, options);
+  return MeasureQuality(sequence, RayCaster(mesh), rig_from_object, view_names, options, response);
 }
 
 StatusOr<QualityReport> MeasureQuality(const Sequence& sequence, const RayCaster& caster,
                                        const std::vector<Eigen::Isometry3d>& rig_from_object,
                                        const std::vector<std::string>& view_names,
-                                       const QualityOptions& options) {
+                                       const QualityOptions& options,
+                                       const ImageResponse& response) {
   BCOT_RETURN_IF_ERROR(options.Validate());
+  if (!response.IsValid()) {
+    return Status::InvalidConfig(fmt::format("image response {} is invalid", response.Name()));
+  }
+  const LinearTable linear(response);
   if (static_cast<int>(rig_from_object.size()) != sequence.num_frames) {
     return Status::InvalidInput(fmt::format("{}: {} poses for {} frames", sequence.dir,
                                             rig_from_object.size(), sequence.num_frames));
@@ -238,7 +245,7 @@ StatusOr<QualityReport> MeasureQuality(const Sequence& sequence, const RayCaster
     StatusOr<ViewFrameQuality> quality =
         MeasureView(caster, camera.camera, camera.cam_from_rig * rig_from_object[frame],
                     sequence.image_paths[indices[view]][frame], mesh.bbox_center(), mesh.diameter(),
-                    options, static_cast<uint32_t>(job + 1));
+                    options, linear, static_cast<uint32_t>(job + 1));
     if (quality.ok()) {
       report.frames[frame][view] = *quality;
     } else {

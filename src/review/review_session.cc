@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bcot/annotate/annotator.h"
+#include "bcot/annotate/image_response_file.h"
 #include "bcot/core/annotation_poses.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/image_io.h"
@@ -132,8 +133,14 @@ StatusOr<std::string> ReviewSession::Refine(int frame) {
                                 shown->options.status().message());
   }
   PoseEdits& edits = *shown->edits;
+  // The frame's edges decoded as the annotation's were (its estimate when edge.response is auto).
+  AnnotateOptions options = *shown->options;
+  BCOT_ASSIGN_OR_RETURN(
+      const ImageResponseRecord image_response,
+      RecordedImageResponse(shown->files.dir, options.tracker.frame.edge.lines.response));
+  options.tracker.frame.edge.lines.response = image_response.response;
   BCOT_ASSIGN_OR_RETURN(const RefinedFrame refined,
-                        RefineFrame(sequence_, caster_, *shown->options, frame, edits.Pose(frame)));
+                        RefineFrame(sequence_, caster_, options, frame, edits.Pose(frame)));
   if (!refined.summary.usable()) {
     return Status::InvalidInput(fmt::format(
         "frame {}: the solve failed ({}); the pose is unchanged", frame, refined.summary.message));

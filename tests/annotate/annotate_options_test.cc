@@ -139,6 +139,42 @@ TEST(AnnotateOptionsTest, EdgeSamplingMustLeaveTheFitEnoughSamples) {
               HasSubstr("--set edge.step_px = 0, must be > 0"));
 }
 
+// The cameras' response: estimated (the annotation default), sRGB, a power law or a table.
+TEST(AnnotateOptionsTest, ImageResponseParsesAndNamesBadValues) {
+  EXPECT_EQ(AnnotateOptions().tracker.frame.edge.lines.response, ImageResponse::Auto());
+  const StatusOr<AnnotateOptions> linear = ParseText("edge:\n  response: gamma\n  gamma: 1\n");
+  ASSERT_TRUE(linear.ok()) << linear.status().message();
+  EXPECT_EQ(linear->tracker.frame.edge.lines.response, ImageResponse::Gamma(1.0));
+  const StatusOr<AnnotateOptions> automatic = ReadAnnotateOptions("", {"edge.response=auto"});
+  ASSERT_TRUE(automatic.ok()) << automatic.status().message();
+  EXPECT_EQ(automatic->tracker.frame.edge.lines.response.kind, ImageResponse::Kind::kAuto);
+  EXPECT_THAT(ParseText("edge:\n  response: linear\n").status().message(),
+              HasSubstr("'linear' is not one of srgb | gamma | table | auto"));
+  EXPECT_THAT(ParseText("edge:\n  response: gamma\n  gamma: 0.1\n").status().message(),
+              HasSubstr("run.yaml:3: edge.gamma = 0.1"));
+
+  const test::TempDir dir;
+  std::string values;
+  for (int code = 0; code < 256; ++code) values += std::to_string(code * code) + "\n";
+  test::WriteText(dir.File("response.txt"), "# a squared response\n" + values);
+  test::WriteText(dir.File("run.yaml"),
+                  "edge:\n  response: table\n  response_file: response.txt\n");
+  const StatusOr<AnnotateOptions> table = ReadAnnotateOptions(dir.File("run.yaml"), {});
+  ASSERT_TRUE(table.ok()) << table.status().message();
+  const ImageResponse& response = table->tracker.frame.edge.lines.response;
+  EXPECT_EQ(response.kind, ImageResponse::Kind::kTable);
+  EXPECT_EQ(response.table_file, dir.File("response.txt"));  // relative to the config file
+  EXPECT_NEAR(LinearTable(response)[128], LinearTable(ImageResponse::Gamma(2.0))[128], 1e-6);
+  EXPECT_THAT(ReadAnnotateOptions("", {"edge.response=table"}).status().message(),
+              HasSubstr("--set edge.response = table, table needs edge.response_file"));
+  test::WriteText(dir.File("short.txt"), "0 1\n2 x\n");
+  EXPECT_THAT(ReadAnnotateOptions(
+                  "", {"edge.response=table", "edge.response_file=" + dir.File("short.txt")})
+                  .status()
+                  .message(),
+              AllOf(HasSubstr("--set edge.response_file"), HasSubstr("short.txt:2: 'x'")));
+}
+
 TEST(AnnotateOptionsTest, WrongTypesAndEnumsAreErrors) {
   EXPECT_THAT(ParseText("frame:\n  rounds: many\n").status().message(), HasSubstr("rounds"));
   const StatusOr<AnnotateOptions> form = ParseText("cost:\n  form: squared\n");

@@ -207,9 +207,10 @@ int main(int argc, char** argv) {
       StatusOr<CorrespondenceLines> region =
           BuildCorrespondenceLines(caster, camera, cam_from_rig, rig_from_objcentre, images[c],
                                    model, silhouette, options->tracker.frame.lines);
-      StatusOr<CorrespondenceLines> edge =
-          BuildEdgeLines(caster, camera, cam_from_rig, rig_from_objcentre, images[c], silhouette,
-                         options->tracker.frame.edge.lines);
+      EdgeLineOptions edge_lines = options->tracker.frame.edge.lines;
+      if (!edge_lines.response.IsResolved()) edge_lines.response = ImageResponse();  // synth: γ 2.2
+      StatusOr<CorrespondenceLines> edge = BuildEdgeLines(
+          caster, camera, cam_from_rig, rig_from_objcentre, images[c], silhouette, edge_lines);
       if (!region.ok() || !edge.ok()) return Fail(region.ok() ? edge.status() : region.status());
       auto shading = [&](const CorrespondenceLine& line) {
         Eigen::Vector3d in;

@@ -32,6 +32,8 @@
 #include "bcot/core/pose_io.h"
 #include "bcot/core/sequence.h"
 #include "bcot/optim/edge_lines.h"
+#include "bcot/optim/frame_problem.h"
+#include "bcot/optim/response_estimation.h"
 #include "bcot/optim/silhouette.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
@@ -90,6 +92,10 @@ int main(int argc, char** argv) {
   app.add_option("--set", overrides, "Override of the config (repeatable)");
   app.add_option("--frames", max_frames, "Only the first N frames (0 = all)");
   app.add_option("--dump", dump_path, "Write every measured line's profile to this file");
+  int response_frames = 0;
+  app.add_option("--response-frames", response_frames,
+                 "Score the response candidates (EstimateImageResponse) on every 5th of the "
+                 "first N frames from the true pose, then exit");
   CLI11_PARSE(app, argc, argv);
 
   const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, overrides);
@@ -101,10 +107,44 @@ int main(int argc, char** argv) {
   const Mesh* mesh = &loaded->mesh;
   const RayCaster caster(*mesh);
   const Eigen::Isometry3d template_from_objcentre = mesh->objcentre_from_template().inverse();
-  const EdgeLineOptions& edge = options->tracker.frame.edge.lines;
+  // edge.response auto (the annotate default) is the tracker's to estimate; measured here
+  // directly, the lines are decoded as sRGB unless --set edge.response=... says otherwise.
+  FrameProblemOptions frame = options->tracker.frame;
+  if (!frame.edge.lines.response.IsResolved()) frame.edge.lines.response = ImageResponse();
+  const EdgeLineOptions& edge = frame.edge.lines;
   const int frames =
       max_frames > 0 ? std::min(max_frames, sequence->num_frames) : sequence->num_frames;
 
+  if (response_frames > 0) {
+    const FrameProblem problem(caster, frame);
+    for (int f = 0; f < std::min(response_frames, sequence->num_frames); f += 5) {
+      std::vector<cv::Mat3b> images;
+      std::vector<FrameView> views;
+      for (int v = 0; v < sequence->rig.size(); ++v) {
+        StatusOr<cv::Mat3b> image =
+            ReadCameraImage(sequence->image_paths[v][f], sequence->rig[v].camera);
+        if (!image.ok()) return Fail(image.status().message());
+        images.push_back(*image);
+      }
+      for (int v = 0; v < sequence->rig.size(); ++v) {
+        FrameView view;
+        view.camera = &sequence->rig[v].camera;
+        view.cam_from_rig = sequence->rig[v].cam_from_rig;
+        view.image = &images[v];
+        views.push_back(view);
+      }
+      const StatusOr<ResponseEstimate> estimate =
+          EstimateImageResponse(problem, views, (*gt)[f] * template_from_objcentre);
+      if (!estimate.ok()) return Fail(estimate.status().message());
+      std::printf("frame %3d best %-10s |", f, estimate->response.Name().c_str());
+      for (const ResponseScore& score : estimate->scores) {
+        std::printf(" %s %.3f±%.3f (%d)", score.response.Name().c_str(), score.spread_px,
+                    score.standard_error_px, score.lines);
+      }
+      std::printf("\n");
+    }
+    return 0;
+  }
   std::printf("%-6s %9s", "camera", "lines");
   for (const char* bin : kBins) std::printf(" | %-5s %5s %8s %6s", bin, "n", "mean", "se");
   std::printf(" | %8s\n", "all");
@@ -112,6 +152,7 @@ int main(int argc, char** argv) {
   std::FILE* dump = dump_path.empty() ? nullptr : std::fopen(dump_path.c_str(), "w");
   if (!dump_path.empty() && dump == nullptr) return Fail("cannot write " + dump_path);
   const int half = static_cast<int>(std::floor(edge.window_px / edge.step_px + 1e-9));
+  const LinearTable linear(edge.response);
   for (int v = 0; v < sequence->rig.size(); ++v) {
     const RigCamera& camera = sequence->rig[v];
     std::array<Accumulator, 4> bins{};
@@ -136,7 +177,7 @@ int main(int argc, char** argv) {
                      line.normal.y(), line.mean_px, line.sigma_px);
         for (int k = -half; k <= half; ++k) {
           const Eigen::Vector3d rgb =
-              SampleLinearRgb(*image, line.centre + k * edge.step_px * line.normal);
+              SampleLinearRgb(*image, linear, line.centre + k * edge.step_px * line.normal);
           std::fprintf(dump, " %.4f %.4f %.4f", rgb.x(), rgb.y(), rgb.z());
         }
         std::fprintf(dump, "\n");

@@ -116,7 +116,7 @@ int Run(const Sequence& sequence, const RayCaster& caster, const std::vector<Eig
   Rows mine;
   rig_from_object.resize(gt.size());
   const StatusOr<QualityReport> report =
-      MeasureQuality(sequence, caster, rig_from_object, {}, options);
+      MeasureQuality(sequence, caster, rig_from_object, {}, options, ImageResponse());
   if (!report.ok()) {
     std::fprintf(stderr, "quality_bench: %s\n", report.status().message().c_str());
     return 1;

@@ -135,7 +135,12 @@ int main(int argc, char** argv) {
   const Eigen::Isometry3d template_from_objcentre = objcentre_from_template.inverse();
   Eigen::Isometry3d cam_from_objcentre = (*truth)[0] * template_from_objcentre;
   if (!(*tracker)->Reset({cv::Mat3b(first)}, cam_from_objcentre).ok()) return 1;
+  std::printf("image response: %s%s\n", (*tracker)->image_response().Name().c_str(),
+              (*tracker)->response_estimate().has_value() ? " (estimated from frame 0)" : "");
 
+  // The edge lines decoded as the tracker does (its estimate when edge.response is auto).
+  EdgeLineOptions edge_lines = options->tracker.frame.edge.lines;
+  edge_lines.response = (*tracker)->image_response();
   if (edge_offsets) {
     std::printf(
         "| frame | lines | found | mean offset (px) | median offset (px) |\n"
@@ -149,7 +154,7 @@ int main(int argc, char** argv) {
           RenderSilhouette(caster, camera, pose * objcentre_from_template, ContourOptions{});
       StatusOr<CorrespondenceLines> lines =
           BuildEdgeLines(caster, camera, Eigen::Isometry3d::Identity(), pose, cv::Mat3b(image),
-                         silhouette, options->tracker.frame.edge.lines);
+                         silhouette, edge_lines);
       if (!lines.ok()) return Fail(lines.status().message());
       std::vector<double> offsets;
       for (const CorrespondenceLine& line : lines->lines) offsets.push_back(line.mean_px);

@@ -152,11 +152,12 @@ TEST(FitEdgeProfileTest, RejectsFlatAndRisingProfiles) {
   EXPECT_FALSE(FitEdgeProfile(far, -4.0, options, &fit));
 }
 
-// A vertical edge at x = edge_x (inside on the left) in an 8-bit sRGB image: linear radiance
+// A vertical edge at x = edge_x (inside on the left) in an 8-bit image: linear radiance
 // `inside` → `outside` per channel (BGR), blurred by a Gaussian of σ = blur_px, then clipped to
-// full scale by the sensor and encoded (the order of a camera: optics, then saturation).
+// full scale by the sensor and encoded by the camera's `response` (the order of a camera:
+// optics, then saturation).
 cv::Mat3b ClippedEdgeImage(double edge_x, double blur_px, const Eigen::Vector3d& inside,
-                           const Eigen::Vector3d& outside) {
+                           const Eigen::Vector3d& outside, const ImageResponse& response = {}) {
   cv::Mat3b image(40, 100);
   for (int x = 0; x < image.cols; ++x) {
     const double outside_fraction = 0.5 * std::erfc(-(x - edge_x) / (blur_px * std::sqrt(2.0)));
@@ -164,8 +165,10 @@ cv::Mat3b ClippedEdgeImage(double edge_x, double blur_px, const Eigen::Vector3d&
     for (int c = 0; c < 3; ++c) {
       const double linear = std::min(
           1.0, inside[c] + (outside[c] - inside[c]) * outside_fraction);  // the sensor clips
-      const double encoded =
-          linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+      const double encoded = response.kind == ImageResponse::Kind::kGamma
+                                 ? std::pow(linear, 1.0 / response.gamma)
+                             : linear <= 0.0031308 ? 12.92 * linear
+                                                   : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
       pixel[c] = static_cast<unsigned char>(std::lround(255.0 * encoded));
     }
     for (int y = 0; y < image.rows; ++y) image(y, x) = pixel;
@@ -189,15 +192,39 @@ TEST(FitEdgeAcrossTest, ClippedChannelsAreLeftOut) {
   for (double edge : {-0.3, 0.0, 0.35}) {
     SCOPED_TRACE(edge);
     EdgeFit reference, fit, biased;
-    ASSERT_EQ(FitEdgeAcross(ClippedEdgeImage(50.0 + edge, 0.8, unclipped, wall), centre, normal,
-                            EdgeLineOptions(), &reference),
+    ASSERT_EQ(FitEdgeAcross(ClippedEdgeImage(50.0 + edge, 0.8, unclipped, wall), LinearTable(),
+                            centre, normal, EdgeLineOptions(), &reference),
               EdgeAcross::kFound);
     EXPECT_NEAR(reference.mean_px, edge, 0.05);
     const cv::Mat3b image = ClippedEdgeImage(50.0 + edge, 0.8, clipped, wall);
-    ASSERT_EQ(FitEdgeAcross(image, centre, normal, EdgeLineOptions(), &fit), EdgeAcross::kFound);
+    ASSERT_EQ(FitEdgeAcross(image, LinearTable(), centre, normal, EdgeLineOptions(), &fit),
+              EdgeAcross::kFound);
     EXPECT_NEAR(fit.mean_px, edge, 0.05);
-    ASSERT_EQ(FitEdgeAcross(image, centre, normal, ignored, &biased), EdgeAcross::kFound);
+    ASSERT_EQ(FitEdgeAcross(image, LinearTable(), centre, normal, ignored, &biased),
+              EdgeAcross::kFound);
     EXPECT_GT(biased.mean_px - reference.mean_px, 0.15);
+  }
+}
+
+// A linear camera's edge decoded as sRGB bends every blurred step: its centre moves towards the
+// bright side (here the object, 4× brighter than the wall: found 0.3 px inside); the camera's
+// own response finds it within the 8-bit sampling error.
+constexpr double kWrongResponseShiftPx = 0.2;
+
+TEST(FitEdgeAcrossTest, EdgesAreDecodedWithTheCameraResponse) {
+  const ImageResponse linear = ImageResponse::Gamma(1.0);
+  const Eigen::Vector3d object(0.2, 0.45, 0.8), wall(0.05, 0.1, 0.2);  // BGR, linear
+  const Eigen::Vector2d centre(50.0, 20.0), normal(1.0, 0.0);
+  for (double edge : {-0.3, 0.0, 0.35}) {
+    SCOPED_TRACE(edge);
+    const cv::Mat3b image = ClippedEdgeImage(50.0 + edge, 0.7, object, wall, linear);
+    EdgeFit right, wrong;
+    ASSERT_EQ(FitEdgeAcross(image, LinearTable(linear), centre, normal, EdgeLineOptions(), &right),
+              EdgeAcross::kFound);
+    EXPECT_NEAR(right.mean_px, edge, 0.05);
+    ASSERT_EQ(FitEdgeAcross(image, LinearTable(), centre, normal, EdgeLineOptions(), &wrong),
+              EdgeAcross::kFound);
+    EXPECT_LT(wrong.mean_px - edge, -kWrongResponseShiftPx);
   }
 }
 

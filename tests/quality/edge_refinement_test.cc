@@ -63,20 +63,20 @@ std::vector<ContourPoint> Circle(const Eigen::Vector2d& centre, double radius, i
 }
 
 TEST(EdgeRefinementTest, SrgbDecodingMatchesTheStandard) {
-  const std::array<float, 256>& table = SrgbToLinearTable();
+  const LinearTable table;  // sRGB
   EXPECT_FLOAT_EQ(table[0], 0.0f);
   EXPECT_FLOAT_EQ(table[255], 1.0f);
   EXPECT_NEAR(table[10], 10 / 255.0 / 12.92, 1e-7);                             // linear segment
   EXPECT_NEAR(table[128], std::pow((128 / 255.0 + 0.055) / 1.055, 2.4), 1e-6);  // power segment
   cv::Mat3b image(2, 2, cv::Vec3b(0, 0, 0));
   image(0, 1) = cv::Vec3b(255, 128, 10);  // B, G, R
-  const Eigen::Vector3d half = SampleLinearRgb(image, Eigen::Vector2d(0.5, 0.0));
+  const Eigen::Vector3d half = SampleLinearRgb(image, table, Eigen::Vector2d(0.5, 0.0));
   EXPECT_NEAR(half.x(), 0.5 * table[10], 1e-6);  // R
   EXPECT_NEAR(half.z(), 0.5, 1e-6);              // B
   // The peak over the pixels a sample mixes: both neighbours at x = 0.5, one at x = 0.
-  EXPECT_NEAR(PeakLinearRgb(image, Eigen::Vector2d(0.5, 0.0)).z(), 1.0, 1e-6);
-  EXPECT_NEAR(PeakLinearRgb(image, Eigen::Vector2d(0.5, 0.0)).x(), table[10], 1e-6);
-  EXPECT_EQ(PeakLinearRgb(image, Eigen::Vector2d(0.0, 0.0)), Eigen::Vector3d::Zero());
+  EXPECT_NEAR(PeakLinearRgb(image, table, Eigen::Vector2d(0.5, 0.0)).z(), 1.0, 1e-6);
+  EXPECT_NEAR(PeakLinearRgb(image, table, Eigen::Vector2d(0.5, 0.0)).x(), table[10], 1e-6);
+  EXPECT_EQ(PeakLinearRgb(image, table, Eigen::Vector2d(0.0, 0.0)), Eigen::Vector3d::Zero());
   EXPECT_TRUE(CanSampleBilinear(image.size(), Eigen::Vector2d(0.99, 0.99)));
   EXPECT_FALSE(CanSampleBilinear(image.size(), Eigen::Vector2d(1.0, 0.5)));
   EXPECT_FALSE(CanSampleBilinear(image.size(), Eigen::Vector2d(-0.01, 0.5)));
@@ -90,7 +90,8 @@ TEST(EdgeRefinementTest, FindsTheGeometricEdgeOfAShadedRim) {
   const std::vector<ContourPoint> contour = Circle(centre, kRadius, 48);
   for (double found : {-1.5, -0.6, 0.0, 0.8, 1.6}) {
     const std::vector<double> offsets(contour.size(), found);
-    const RefinedOffsets refined = RefineOffsetsOnEdges(contour, offsets, image, QualityOptions());
+    const RefinedOffsets refined =
+        RefineOffsetsOnEdges(contour, offsets, image, LinearTable(), QualityOptions());
     EXPECT_EQ(refined.ambiguous, 0) << "found at " << found;
     // 8-bit quantisation of the dark rim scatters single points by up to ~0.15 px; their mean
     // (the bias a pose would inherit) stays within 0.02 px.
@@ -112,7 +113,7 @@ TEST(EdgeRefinementTest, NoEdgeNoOffset) {
   // A flat image: no step anywhere.
   const cv::Mat3b flat(160, 160, cv::Vec3b(90, 120, 150));
   const RefinedOffsets none = RefineOffsetsOnEdges(
-      contour, std::vector<double>(contour.size(), 0.0), flat, QualityOptions());
+      contour, std::vector<double>(contour.size(), 0.0), flat, LinearTable(), QualityOptions());
   EXPECT_EQ(none.ambiguous, 16);
   for (double offset : none.offsets) EXPECT_FALSE(std::isfinite(offset));
   // Points the previous step did not find stay unfound and are not counted as ambiguous; a
@@ -121,7 +122,8 @@ TEST(EdgeRefinementTest, NoEdgeNoOffset) {
   std::vector<double> offsets(contour.size(), std::nan(""));
   offsets[0] = 37.0;  // x = 157: the ±4.5 px profile window leaves the 160 px image
   offsets[1] = 0.0;
-  const RefinedOffsets some = RefineOffsetsOnEdges(contour, offsets, image, QualityOptions());
+  const RefinedOffsets some =
+      RefineOffsetsOnEdges(contour, offsets, image, LinearTable(), QualityOptions());
   EXPECT_EQ(some.ambiguous, 1);
   EXPECT_TRUE(std::isfinite(some.offsets[1]));
   for (size_t i = 0; i < contour.size(); ++i) {

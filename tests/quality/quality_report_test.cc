@@ -272,7 +272,8 @@ void ExpectTruthAcceptedAndThreePixelOffsetRejected(const std::string& dir,
   ASSERT_TRUE(sequence.ok()) << sequence.status().message();
   const StatusOr<std::vector<Eigen::Isometry3d>> gt = ReadPoseFile(dir + "/gt/rig_from_object.txt");
   ASSERT_TRUE(gt.ok());
-  const StatusOr<QualityReport> good = MeasureQuality(*sequence, *gt, {}, QualityOptions());
+  const StatusOr<QualityReport> good =
+      MeasureQuality(*sequence, *gt, {}, QualityOptions(), ImageResponse());
   ASSERT_TRUE(good.ok()) << good.status().message();
   EXPECT_TRUE(good->accepted) << (good->reasons.empty() ? "" : good->reasons[0]);
   for (const ViewQualitySummary& view : good->views) {
@@ -288,7 +289,8 @@ void ExpectTruthAcceptedAndThreePixelOffsetRejected(const std::string& dir,
     rig_from_object.pretranslate(cam0.cam_from_rig.linear().transpose() *
                                  Eigen::Vector3d(dx_mm, 0, 0));
   }
-  const StatusOr<QualityReport> bad = MeasureQuality(*sequence, offset, {}, QualityOptions());
+  const StatusOr<QualityReport> bad =
+      MeasureQuality(*sequence, offset, {}, QualityOptions(), ImageResponse());
   ASSERT_TRUE(bad.ok()) << bad.status().message();
   EXPECT_FALSE(bad->accepted);
   ASSERT_FALSE(bad->reasons.empty());
@@ -322,7 +324,7 @@ TEST_F(QualityOnSynthTest, WritesJsonCsvAndSelfContainedHtml) {
   ASSERT_TRUE(mesh.ok());
   const RayCaster caster(*mesh);
   const StatusOr<QualityReport> report =
-      MeasureQuality(*sequence, caster, *gt, {"cam1"}, QualityOptions());
+      MeasureQuality(*sequence, caster, *gt, {"cam1"}, QualityOptions(), ImageResponse());
   ASSERT_TRUE(report.ok()) << report.status().message();
   ASSERT_TRUE(WriteQualityFiles(out.path(), *report, *sequence, caster, *gt).ok());
   const nlohmann::json json = nlohmann::json::parse(*ReadTextFile(out.File("quality.json")));
@@ -388,7 +390,8 @@ TEST_F(QualityOnSynthTest, FramesWithoutTheObjectCannotBeToldAndAreNotBad) {
   ASSERT_TRUE(poses.ok());
   for (int f : {0, 1}) (*poses)[f].pretranslate(Eigen::Vector3d(0, 0, -1e5));  // behind the rig
   QualityOptions options;
-  const StatusOr<QualityReport> strict = MeasureQuality(*sequence, *poses, {}, options);
+  const StatusOr<QualityReport> strict =
+      MeasureQuality(*sequence, *poses, {}, options, ImageResponse());
   ASSERT_TRUE(strict.ok()) << strict.status().message();
   for (int f : {0, 1}) {
     for (const ViewFrameQuality& q : strict->frames[f]) {
@@ -405,7 +408,8 @@ TEST_F(QualityOnSynthTest, FramesWithoutTheObjectCannotBeToldAndAreNotBad) {
   EXPECT_THAT(strict->reasons[0], HasSubstr("cannot tell on 2 of 6 frames"));
   EXPECT_EQ(VerdictOf(*strict).unverified_frame_views, 4);
   options.allowed_unverified_fraction = 0.5;
-  const StatusOr<QualityReport> lenient = MeasureQuality(*sequence, *poses, {}, options);
+  const StatusOr<QualityReport> lenient =
+      MeasureQuality(*sequence, *poses, {}, options, ImageResponse());
   ASSERT_TRUE(lenient.ok());
   EXPECT_TRUE(lenient->accepted);
 }

@@ -56,7 +56,10 @@ struct ViewSelection {
 
 struct AnnotateOptions {
   // The optim layer's defaults, except the rounds: 2 per tracked frame (the edge stage then
-  // places the contour) and 5 per bootstrap solve of frame 0 (docs/notes/issue19_speed.md).
+  // places the contour) and 5 per bootstrap solve of frame 0 (docs/notes/issue19_speed.md),
+  // and the image response: estimated (edge.response auto: docs/camera_response.md; a
+  // machine-vision camera's linear codes decoded as sRGB move every edge towards its bright
+  // side).
   AnnotateOptions();
 
   MultiViewTrackerOptions tracker;

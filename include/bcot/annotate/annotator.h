@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "bcot/annotate/annotate_options.h"
+#include "bcot/annotate/image_response_file.h"
 #include "bcot/core/sequence.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/frame_problem.h"
@@ -56,6 +57,7 @@ struct SequenceAnnotation {
   std::vector<Eigen::Isometry3d> per_frame_rig_from_object;  // before the window, O_t
   std::vector<AnnotatedFrame> frames;                        // per frame
   int failed_frames = 0;                                     // frames whose solve was not usable
+  ImageResponseRecord image_response;  // what the edges were decoded with (image_response.yaml)
 };
 
 // Called after every frame with (frames done, total frames).

@@ -1,16 +1,81 @@
-// Linear (radiance-proportional) RGB from 8-bit sRGB images. Optical blur acts on radiance, so
-// the centre of a blurred step is found on linear values; on gamma-encoded values it moves
-// towards the step's dark side.
+// Linear (radiance-proportional) RGB from 8-bit images. Optical blur acts on radiance, so the
+// centre of a blurred step is found on linear values; decoded with the wrong response it moves
+// towards one side of the step (towards the bright side when a linear camera's codes are decoded
+// as sRGB: docs/notes/issue12_response.md). The response is the camera's: sRGB for most
+// consumer cameras and renderers, a power law (often γ = 1, i.e. linear) for machine-vision
+// cameras.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 #include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "bcot/core/status.h"
 
 namespace bcot {
 
-// linear value of each 8-bit sRGB code (IEC 61966-2-1 decoding), in [0, 1].
-const std::array<float, 256>& SrgbToLinearTable();
+// How an image's 8-bit codes c map to linear values in [0, 1].
+struct ImageResponse {
+  enum class Kind {
+    kSrgb,   // IEC 61966-2-1 decoding
+    kGamma,  // (c / 255)^gamma; gamma = 1: a linear camera
+    kAuto,   // not known: estimated from the images (optim/response_estimation.h)
+    kTable,  // measured: `table` (from `table_file`, ReadResponseTable)
+  };
+  static constexpr double kMinGamma = 0.2;
+  static constexpr double kMaxGamma = 5.0;
+  Kind kind = Kind::kSrgb;
+  // Exponent of kGamma; in [kMinGamma, kMaxGamma]. Unused by the other kinds.
+  double gamma = 2.2;
+  // kTable: the linear value of each code 0..255 (non-decreasing, finite, >= 0, last > 0; any
+  // scale: LinearTable divides by the last), read from table_file.
+  std::string table_file;
+  std::vector<float> table;
+
+  static ImageResponse Gamma(double exponent) {
+    ImageResponse response;
+    response.kind = Kind::kGamma;
+    response.gamma = exponent;
+    return response;
+  }
+  static ImageResponse Auto() {
+    ImageResponse response;
+    response.kind = Kind::kAuto;
+    return response;
+  }
+
+  bool IsValid() const;
+  // A response codes can be decoded with (not kAuto).
+  bool IsResolved() const { return kind != Kind::kAuto; }
+  // "srgb", "gamma 1.8", "table <file>" or "auto".
+  std::string Name() const;
+  // Same kind and, for kGamma, the same exponent, for kTable the same values.
+  bool operator==(const ImageResponse& other) const {
+    return kind == other.kind && (kind != Kind::kGamma || gamma == other.gamma) &&
+           (kind != Kind::kTable || table == other.table);
+  }
+  bool operator!=(const ImageResponse& other) const { return !(*this == other); }
+};
+
+// A measured response: 256 numbers, the linear value of codes 0, 1, ..., 255 in order, separated
+// by white space or line breaks; `#` starts a comment. E.g. the inverse of a camera's response
+// curve recovered from an exposure series (OpenCV's CalibrateDebevec), or of a renderer's view
+// transform (scripts/response_table.py). Errors name the file and line.
+StatusOr<std::vector<float>> ReadResponseTable(const std::string& path);
+
+// The linear value of every 8-bit code under one response. Building it costs 256 powers: build
+// once per image or per set of lines, not per sample.
+class LinearTable {
+ public:
+  // `response` must be valid and resolved.
+  explicit LinearTable(const ImageResponse& response = ImageResponse());
+  float operator[](int code) const { return table_[code]; }
+
+ private:
+  std::array<float, 256> table_;
+};
 
 // True when bilinear sampling at `p` stays inside an image of `size` (p and its 2×2
 // neighbours: 0 <= x < width − 1, 0 <= y < height − 1).
@@ -18,13 +83,15 @@ inline bool CanSampleBilinear(const cv::Size& size, const Eigen::Vector2d& p) {
   return p.x() >= 0.0 && p.y() >= 0.0 && p.x() < size.width - 1.0 && p.y() < size.height - 1.0;
 }
 
-// Bilinear linear-RGB colour (R, G, B order) of the BGR image at `p`; requires
-// CanSampleBilinear(image.size(), p).
-Eigen::Vector3d SampleLinearRgb(const cv::Mat3b& image, const Eigen::Vector2d& p);
+// Bilinear linear-RGB colour (R, G, B order) of the BGR image at `p`, codes decoded by `table`;
+// requires CanSampleBilinear(image.size(), p).
+Eigen::Vector3d SampleLinearRgb(const cv::Mat3b& image, const LinearTable& table,
+                                const Eigen::Vector2d& p);
 
 // Per channel (R, G, B), the largest linear value among the pixels SampleLinearRgb mixes at `p`
 // (those with a non-zero weight): tells whether a sample rests on a clipped pixel. Same
 // requirement as SampleLinearRgb.
-Eigen::Vector3d PeakLinearRgb(const cv::Mat3b& image, const Eigen::Vector2d& p);
+Eigen::Vector3d PeakLinearRgb(const cv::Mat3b& image, const LinearTable& table,
+                              const Eigen::Vector2d& p);
 
 }  // namespace bcot

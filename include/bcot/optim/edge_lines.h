@@ -11,8 +11,9 @@
 // any pair of colours on its two sides.
 //
 // Measurement, per line (centre c = contour point at T0, outward unit normal n, model point X):
-//   profile   I(s) = linear RGB (sRGB decoded: the blur acts on radiance, and the inflection of
-//             a gamma-encoded step is shifted towards its dark side) at c + s·n, bilinear,
+//   profile   I(s) = linear RGB (the codes decoded by the camera's `response`: the blur acts on
+//             radiance, and the inflection of a step decoded with the wrong response moves
+//             towards one of its sides) at c + s·n, bilinear,
 //             s = k·step_px over [−window_px, +window_px];
 //   scalar    p(s) = d̂·I(s) with d the mean colour over s ∈ [−window, −1] minus that over
 //             s ∈ [1, window] (the direction of largest contrast across this line), without
@@ -53,6 +54,7 @@
 #include <vector>
 
 #include "bcot/core/camera.h"
+#include "bcot/core/linear_rgb.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/correspondence_lines.h"
 #include "bcot/optim/silhouette.h"
@@ -88,6 +90,8 @@ struct EdgeLineOptions {
   // Linear level (1 = full scale) at or above which a channel's sample counts as clipped by
   // the sensor (see "Clipping" above); > 1 = never.
   double clip_level = 0.95;
+  // How the images' 8-bit codes map to linear light: the camera's response (linear_rgb.h).
+  ImageResponse response;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
@@ -112,12 +116,13 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
                     const EdgeLineOptions& options, EdgeFit* fit);
 
 // The edge across one line (the profile, contrast direction and fit above) through `centre`
-// along the unit `normal` (inside → outside) of `image` (BGR, sRGB): kFound and `fit` (offsets
-// along the normal from centre, σ unfloored), or why not.
+// along the unit `normal` (inside → outside) of `image` (BGR, its codes decoded by `table`, built
+// from options.response by the caller once for many lines): kFound and `fit` (offsets along the
+// normal from centre, σ unfloored), or why not.
 enum class EdgeAcross { kFound, kOffImage, kAmbiguous };
-EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const Eigen::Vector2d& centre,
-                         const Eigen::Vector2d& normal, const EdgeLineOptions& options,
-                         EdgeFit* fit);
+EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const LinearTable& table,
+                         const Eigen::Vector2d& centre, const Eigen::Vector2d& normal,
+                         const EdgeLineOptions& options, EdgeFit* fit);
 
 // Builds the edge lines of one view at T0 (rig_from_objcentre). `silhouette` must be
 // RenderSilhouette at cam_from_rig · T0 · objcentre_from_template. Errors as

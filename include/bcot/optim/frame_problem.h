@@ -197,7 +197,8 @@ struct ViewLinearisation {
 class FrameProblem {
  public:
   // `caster` (the object's mesh) must outlive the problem; `options` must be valid (CHECKed:
-  // validate user input with FrameProblemOptions::Validate first).
+  // validate user input with FrameProblemOptions::Validate first) with a resolved edge
+  // response (CHECKed: MultiViewTracker resolves ImageResponse::Kind::kAuto).
   FrameProblem(const RayCaster& caster, const FrameProblemOptions& options);
 
   // Minimises the joint energy starting from *rig_from_objcentre and writes the result there
@@ -211,6 +212,13 @@ class FrameProblem {
   FrameSummary Solve(const std::vector<FrameView>& views, Eigen::Isometry3d* rig_from_objcentre,
                      std::vector<ViewLinearisation>* linearisations = nullptr) const;
 
+  // The edge stage alone (options().edge, run also when edge.enabled is false) from
+  // *rig_from_objcentre, which receives the result; false (pose unchanged) when all views
+  // together have fewer than edge.min_lines lines or Ceres failed. Same view requirements as
+  // Solve (colour models are not used).
+  bool SolveEdges(const std::vector<FrameView>& views, Eigen::Isometry3d* rig_from_objcentre) const;
+
+  const RayCaster& caster() const { return caster_; }
   const FrameProblemOptions& options() const { return options_; }
 
  private:

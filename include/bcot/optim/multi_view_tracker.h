@@ -23,6 +23,11 @@
 //                          motion reaches 40 mm and 25° per frame at 30 fps (BCOT), beyond what
 //                          one linearised band can capture from the last pose.
 //
+// Image response. With frame.edge.lines.response = kAuto (and the edge stage on) the first
+// Reset, or Initialize that solves, estimates the cameras' response from its frame at its pose
+// (response_estimation.h); Initialize then solves the frame once more with it. Until then, and
+// when the estimate fails, edges are decoded as sRGB. Every later solve uses image_response().
+//
 // Poses are rig_from_objcentre (O_o, see se3_manifold.h); images are in view order.
 // Not thread-safe (the colour models change); one tracker per sequence.
 #pragma once
@@ -37,6 +42,7 @@
 #include "bcot/core/status.h"
 #include "bcot/optim/color_model.h"
 #include "bcot/optim/frame_problem.h"
+#include "bcot/optim/response_estimation.h"
 #include "bcot/render/ray_caster.h"
 
 namespace bcot {
@@ -96,6 +102,13 @@ class MultiViewTracker {
 
   const std::vector<TrackedView>& views() const { return views_; }
   const MultiViewTrackerOptions& options() const { return options_; }
+  // The response the edges are decoded with (resolved; see "Image response" above).
+  const ImageResponse& image_response() const { return image_response_; }
+  // The estimate behind image_response() when the response is kAuto: empty until a Reset or
+  // Initialize made one; an error status when the estimate failed (sRGB is used then).
+  const std::optional<StatusOr<ResponseEstimate>>& response_estimate() const {
+    return response_estimate_;
+  }
 
  private:
   MultiViewTracker(const RayCaster& caster, std::vector<TrackedView> views,
@@ -111,12 +124,24 @@ class MultiViewTracker {
   FrameSummary Solve(const FrameProblem& problem, const std::vector<cv::Mat3b>& images,
                      Eigen::Isometry3d* rig_from_objcentre,
                      std::vector<ViewLinearisation>* linearisations, bool refine);
+  // The frame's views for a FrameProblem (colour models by `refine` as in Solve).
+  std::vector<FrameView> FrameViews(const std::vector<cv::Mat3b>& images, bool refine) const;
+  // Decodes edges with `response` from now on (rebuilds the frame problems).
+  void UseImageResponse(const ImageResponse& response);
+  // With a kAuto response and the edge stage on, the first call estimates the response on this
+  // frame at `rig_from_objcentre` (a solved or known pose); true when edges are decoded
+  // differently from now on.
+  bool ResolveImageResponse(const std::vector<cv::Mat3b>& images,
+                            const Eigen::Isometry3d& rig_from_objcentre);
 
   const RayCaster& caster_;
   std::vector<TrackedView> views_;
   MultiViewTrackerOptions options_;
-  FrameProblem problem_;
-  FrameProblem bootstrap_problem_;  // problem_ with bootstrap_rounds
+  ImageResponse image_response_;
+  std::optional<StatusOr<ResponseEstimate>> response_estimate_;
+  // The frame problems of options_ with image_response_ (resolved) as the edge response.
+  std::unique_ptr<FrameProblem> problem_;
+  std::unique_ptr<FrameProblem> bootstrap_problem_;  // problem_ with bootstrap_rounds
   std::vector<std::unique_ptr<ColorModel>> color_models_;
   // Per view, the model of the full-resolution rounds when color.refine_kind differs from
   // color.kind, else null.

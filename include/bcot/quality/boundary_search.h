@@ -5,6 +5,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "bcot/core/linear_rgb.h"
 #include "bcot/quality/quality_options.h"
 #include "bcot/render/ray_caster.h"
 
@@ -35,9 +36,10 @@ struct RefinedOffsets {
   std::vector<double> sigmas_px;  // standard deviation of each finite offset (px)
   int ambiguous = 0;              // points found in step 3 that the refinement discarded
 };
+// `linear` decodes the image's codes (the camera's response).
 RefinedOffsets RefineOffsetsOnEdges(const std::vector<ContourPoint>& contour,
                                     const std::vector<double>& offsets, const cv::Mat3b& image,
-                                    const QualityOptions& options);
+                                    const LinearTable& linear, const QualityOptions& options);
 
 // Median and 90th percentile of |values| ignoring NaN; NaN when none is finite.
 double AbsPercentile(const std::vector<double>& values, double fraction);

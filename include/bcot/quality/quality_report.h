@@ -63,11 +63,12 @@
 #include <string>
 #include <vector>
 
+#include "bcot/core/linear_rgb.h"
 #include "bcot/core/sequence.h"
 #include "bcot/core/status.h"
+#include "bcot/core/version.h"
 #include "bcot/quality/quality_options.h"
 #include "bcot/render/ray_caster.h"
-#include "bcot/core/version.h"
 
 namespace bcot {
 
@@ -117,17 +118,20 @@ struct QualityReport {
 };
 
 // Measures every frame and view. `rig_from_object` (O_t, mm) has one pose per frame of the
-// sequence; `view_names` are rig cameras (empty = all). Errors: options invalid, pose count
-// mismatch, a camera not in the rig, the mesh or an image does not read.
+// sequence; `view_names` are rig cameras (empty = all); `response` is the cameras' (the edge
+// refinement decodes the images with it, as the edge stage does). Errors: options or response
+// invalid, pose count mismatch, a camera not in the rig, the mesh or an image does not read.
 StatusOr<QualityReport> MeasureQuality(const Sequence& sequence,
                                        const std::vector<Eigen::Isometry3d>& rig_from_object,
                                        const std::vector<std::string>& view_names,
-                                       const QualityOptions& options);
+                                       const QualityOptions& options,
+                                       const ImageResponse& response);
 // The same with the ray caster of the sequence's mesh (O_t, mm) that the caller already built,
 // e.g. the annotator's, so the mesh is neither loaded nor its BVH built again.
 StatusOr<QualityReport> MeasureQuality(const Sequence& sequence, const RayCaster& caster,
                                        const std::vector<Eigen::Isometry3d>& rig_from_object,
                                        const std::vector<std::string>& view_names,
-                                       const QualityOptions& options);
+                                       const QualityOptions& options,
+                                       const ImageResponse& response);
 
 }  // namespace bcot

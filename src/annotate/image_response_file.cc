@@ -1,0 +1,175 @@
+#include "bcot/annotate/image_response_file.h"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <exception>
+#include <limits>
+
+#include "bcot/core/file_util.h"
+#include "bcot/core/yaml_util.h"
+
+namespace bcot {
+namespace {
+
+// The written name of a resolved response kind.
+const char* KindName(ImageResponse::Kind kind) {
+  switch (kind) {
+    case ImageResponse::Kind::kGamma:
+      return "gamma";
+    case ImageResponse::Kind::kTable:
+      return "table";
+    case ImageResponse::Kind::kSrgb:
+    case ImageResponse::Kind::kAuto:
+      break;
+  }
+  return "srgb";
+}
+
+// A response as Name() writes it ("srgb", "gamma 1.8"); `where` locates it in messages.
+StatusOr<ImageResponse> ResponseFromName(const std::string& name, const std::string& where) {
+  ImageResponse response;
+  if (name == "srgb") return response;
+  response.kind = ImageResponse::Kind::kGamma;
+  size_t used = 0;
+  try {
+    if (name.rfind("gamma ", 0) == 0) response.gamma = std::stod(name.substr(6), &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || 6 + used != name.size() || !response.IsValid()) {
+    return Status::InvalidInput(
+        fmt::format("{}: '{}' is not a response (srgb, or gamma G with G in [{}, {}])", where, name,
+                    ImageResponse::kMinGamma, ImageResponse::kMaxGamma));
+  }
+  return response;
+}
+
+// The response of `map`: `kind_key` srgb | gamma | table, with `gamma_key` for gamma and
+// table_file for table.
+StatusOr<ImageResponse> ParseResponse(YamlMap* map, const std::string& kind_key,
+                                      const std::string& gamma_key) {
+  int kind = -1;
+  BCOT_RETURN_IF_ERROR(map->GetOptionalChoice(kind_key, {"srgb", "gamma", "table"}, &kind));
+  if (kind < 0) return map->Error(kind_key, "missing (srgb | gamma | table)");
+  ImageResponse response;
+  if (kind == 2) {
+    response.kind = ImageResponse::Kind::kTable;
+    BCOT_RETURN_IF_ERROR(map->Get("table_file", &response.table_file));
+    StatusOr<std::vector<float>> table = ReadResponseTable(response.table_file);
+    if (!table.ok()) return map->Error("table_file", table.status().message());
+    response.table = std::move(table).value();
+  }
+  if (kind == 1) {
+    response.kind = ImageResponse::Kind::kGamma;
+    BCOT_RETURN_IF_ERROR(map->Get(gamma_key, &response.gamma));
+    if (!response.IsValid()) {
+      return map->Error(gamma_key, fmt::format("{} is outside [{}, {}]", response.gamma,
+                                               ImageResponse::kMinGamma, ImageResponse::kMaxGamma));
+    }
+  }
+  return response;
+}
+
+}  // namespace
+
+std::string FormatImageResponseRecord(const ImageResponseRecord& record) {
+  BCOT_CHECK(record.response.IsResolved());
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  out << YAML::Key << "response" << YAML::Value << KindName(record.response.kind);
+  if (record.response.kind == ImageResponse::Kind::kGamma) {
+    out << YAML::Key << "gamma" << YAML::Value << record.response.gamma;
+  }
+  if (record.response.kind == ImageResponse::Kind::kTable) {
+    out << YAML::Key << "table_file" << YAML::Value << record.response.table_file;
+  }
+  out << YAML::Key << "estimated" << YAML::Value << record.estimated;
+  if (!record.estimate_error.empty()) {
+    out << YAML::Key << "estimate_error" << YAML::Value << record.estimate_error;
+  }
+  if (!record.scores.empty()) {
+    out << YAML::Key << "candidates" << YAML::Value << YAML::BeginSeq;
+    for (const ResponseScore& score : record.scores) {
+      out << YAML::Flow << YAML::BeginMap;
+      out << YAML::Key << "response" << YAML::Value << score.response.Name();
+      for (const auto& [key, value] : {std::pair{"spread_px", score.spread_px},
+                                       std::pair{"standard_error_px", score.standard_error_px}}) {
+        out << YAML::Key << key << YAML::Value;
+        if (std::isfinite(value)) {
+          out << fmt::format("{:.4f}", value);
+        } else {
+          out << YAML::Null;  // the candidate failed
+        }
+      }
+      out << YAML::Key << "lines" << YAML::Value << score.lines;
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+  }
+  out << YAML::EndMap;
+  return fmt::format(
+      "# bcot annotate: the cameras' response the edges were decoded with (edge.response);\n"
+      "# candidates: interquartile range (px) of the edge offsets at the first frame's pose and\n"
+      "# its standard error; the first is kept unless another is clearly better\n{}\n",
+      out.c_str());
+}
+
+Status WriteImageResponseFile(const std::string& annotation_dir,
+                              const ImageResponseRecord& record) {
+  return WriteFileAtomic(annotation_dir + "/" + kImageResponseFileName,
+                         FormatImageResponseRecord(record));
+}
+
+StatusOr<ImageResponseRecord> ReadImageResponseFile(const std::string& annotation_dir) {
+  const std::string path = annotation_dir + "/" + kImageResponseFileName;
+  BCOT_ASSIGN_OR_RETURN(const YAML::Node root, LoadYamlFile(path));
+  YamlMap map(root, path, "");
+  ImageResponseRecord record;
+  BCOT_ASSIGN_OR_RETURN(record.response, ParseResponse(&map, "response", "gamma"));
+  BCOT_RETURN_IF_ERROR(map.Get("estimated", &record.estimated));
+  BCOT_RETURN_IF_ERROR(map.GetOptional("estimate_error", &record.estimate_error));
+  if (map.Has("candidates")) {
+    const YAML::Node candidates = map.Node("candidates");
+    if (!candidates.IsSequence()) return map.Error("candidates", "must be a list");
+    for (size_t i = 0; i < candidates.size(); ++i) {
+      YamlMap entry(candidates[i], path, fmt::format("candidates[{}]", i));
+      ResponseScore score;
+      std::string name;
+      BCOT_RETURN_IF_ERROR(entry.Get("response", &name));
+      BCOT_ASSIGN_OR_RETURN(score.response, ResponseFromName(name, entry.Where("response")));
+      for (const auto& [key, value] : {std::pair{"spread_px", &score.spread_px},
+                                       std::pair{"standard_error_px", &score.standard_error_px}}) {
+        if (entry.Has(key) && entry.Node(key).IsNull()) {
+          *value = std::numeric_limits<double>::quiet_NaN();
+        } else {
+          BCOT_RETURN_IF_ERROR(entry.Get(key, value));
+        }
+      }
+      BCOT_RETURN_IF_ERROR(entry.Get("lines", &score.lines));
+      record.scores.push_back(score);
+    }
+  }
+  BCOT_RETURN_IF_ERROR(map.CheckNoUnknownKeys());
+  return record;
+}
+
+StatusOr<ImageResponseRecord> RecordedImageResponse(const std::string& annotation_dir,
+                                                    const ImageResponse& configured) {
+  if (configured.IsResolved()) {
+    ImageResponseRecord record;
+    record.response = configured;
+    return record;
+  }
+  StatusOr<ImageResponseRecord> record = ReadImageResponseFile(annotation_dir);
+  if (record.status().code() == StatusCode::kNotFound) {
+    return Status::NotFound(fmt::format(
+        "{} (edge.response is auto: the estimate the annotation used is recorded there; an "
+        "annotation written without it decoded its images as sRGB: --set edge.response=srgb)",
+        record.status().message()));
+  }
+  return record;
+}
+
+}  // namespace bcot
