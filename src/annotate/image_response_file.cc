@@ -46,13 +46,11 @@ StatusOr<ImageResponse> ResponseFromName(const std::string& name, const std::str
   return response;
 }
 
-// The response of `map`: `kind_key` srgb | gamma | table, with `gamma_key` for gamma and
-// table_file for table.
-StatusOr<ImageResponse> ParseResponse(YamlMap* map, const std::string& kind_key,
-                                      const std::string& gamma_key) {
+// The response of the file's `response` (srgb | gamma | table), `gamma` and `table_file` keys.
+StatusOr<ImageResponse> ParseResponse(YamlMap* map) {
   int kind = -1;
-  BCOT_RETURN_IF_ERROR(map->GetOptionalChoice(kind_key, {"srgb", "gamma", "table"}, &kind));
-  if (kind < 0) return map->Error(kind_key, "missing (srgb | gamma | table)");
+  BCOT_RETURN_IF_ERROR(map->GetOptionalChoice("response", {"srgb", "gamma", "table"}, &kind));
+  if (kind < 0) return map->Error("response", "missing (srgb | gamma | table)");
   ImageResponse response;
   if (kind == 2) {
     response.kind = ImageResponse::Kind::kTable;
@@ -63,10 +61,10 @@ StatusOr<ImageResponse> ParseResponse(YamlMap* map, const std::string& kind_key,
   }
   if (kind == 1) {
     response.kind = ImageResponse::Kind::kGamma;
-    BCOT_RETURN_IF_ERROR(map->Get(gamma_key, &response.gamma));
+    BCOT_RETURN_IF_ERROR(map->Get("gamma", &response.gamma));
     if (!response.IsValid()) {
-      return map->Error(gamma_key, fmt::format("{} is outside [{}, {}]", response.gamma,
-                                               ImageResponse::kMinGamma, ImageResponse::kMaxGamma));
+      return map->Error("gamma", fmt::format("{} is outside [{}, {}]", response.gamma,
+                                             ImageResponse::kMinGamma, ImageResponse::kMaxGamma));
     }
   }
   return response;
@@ -127,7 +125,7 @@ StatusOr<ImageResponseRecord> ReadImageResponseFile(const std::string& annotatio
   BCOT_ASSIGN_OR_RETURN(const YAML::Node root, LoadYamlFile(path));
   YamlMap map(root, path, "");
   ImageResponseRecord record;
-  BCOT_ASSIGN_OR_RETURN(record.response, ParseResponse(&map, "response", "gamma"));
+  BCOT_ASSIGN_OR_RETURN(record.response, ParseResponse(&map));
   BCOT_RETURN_IF_ERROR(map.Get("estimated", &record.estimated));
   BCOT_RETURN_IF_ERROR(map.GetOptional("estimate_error", &record.estimate_error));
   if (map.Has("candidates")) {

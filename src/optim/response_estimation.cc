@@ -43,10 +43,9 @@ double BootstrapStandardError(const std::vector<double>& values, int samples) {
   return std::sqrt(std::max(0.0, sum_squares / samples - mean * mean));
 }
 
-// The edge lines' offsets μ of every view at `rig_from_objcentre`.
+// The offsets μ of `problem`'s edge lines in every view at `rig_from_objcentre`.
 std::vector<double> EdgeOffsets(const FrameProblem& problem, const std::vector<FrameView>& views,
-                                const Eigen::Isometry3d& rig_from_objcentre,
-                                const EdgeLineOptions& lines) {
+                                const Eigen::Isometry3d& rig_from_objcentre) {
   // Model points are read from the contour only (as the edge stage does).
   constexpr int kPointStridePx = 64;
   const RayCaster& caster = problem.caster();
@@ -59,8 +58,8 @@ std::vector<double> EdgeOffsets(const FrameProblem& problem, const std::vector<F
         problem.options().region.contour, kPointStridePx);
     const StatusOr<CorrespondenceLines> measured =
         BuildEdgeLines(caster, *view.camera, view.cam_from_rig, rig_from_objcentre, *view.image,
-                       silhouette, lines);
-    BCOT_CHECK(measured.ok());  // options validated with the problem's
+                       silhouette, problem.options().edge.lines);
+    BCOT_CHECK(measured.ok());  // validated with the problem's options
     for (const CorrespondenceLine& line : measured->lines) offsets.push_back(line.mean_px);
   }
   return offsets;
@@ -115,7 +114,7 @@ StatusOr<ResponseEstimate> EstimateImageResponse(const FrameProblem& problem,
     score.spread_px = std::numeric_limits<double>::quiet_NaN();
     score.standard_error_px = std::numeric_limits<double>::quiet_NaN();
     if (candidate.SolveEdges(views, &solved)) {
-      std::vector<double> offsets = EdgeOffsets(candidate, views, solved, frame.edge.lines);
+      std::vector<double> offsets = EdgeOffsets(candidate, views, solved);
       score.lines = static_cast<int>(offsets.size());
       if (score.lines >= frame.edge.min_lines) {
         score.standard_error_px = BootstrapStandardError(offsets, options.bootstrap_samples);
