@@ -238,11 +238,13 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "edge.response", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.response.kind; },
        Choices<ImageResponse::Kind>{{"srgb", ImageResponse::Kind::kSrgb},
                                     {"gamma", ImageResponse::Kind::kGamma},
+                                    {"log", ImageResponse::Kind::kLog},
                                     {"table", ImageResponse::Kind::kTable},
                                     {"auto", ImageResponse::Kind::kAuto}},
        "the cameras' response, how 8-bit codes map to linear light (edge stage and quality "
-       "check): srgb, gamma with edge.gamma (1 = a linear machine-vision camera), table "
-       "(edge.response_file), or auto (estimated from the first frame: image_response.yaml)")
+       "check): srgb, gamma with edge.gamma (1 = a linear machine-vision camera), log with "
+       "edge.log_stops (log-encoding cameras, film-like views), table (edge.response_file), or "
+       "auto (estimated from the first frame: image_response.yaml)")
       .Check([](const AnnotateOptions& o) -> std::string {
         const ImageResponse& response = o.tracker.frame.edge.lines.response;
         return response.kind == ImageResponse::Kind::kTable && response.table.empty()
@@ -253,6 +255,12 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "edge.gamma", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.response.gamma; }, "",
        "exponent of edge.response: gamma, linear = (code / 255)^gamma")
       .Range(Closed(ImageResponse::kMinGamma, ImageResponse::kMaxGamma));
+  s->Add(
+       "edge.log_stops",
+       [](auto& o) -> auto& { return o.tracker.frame.edge.lines.response.log_stops; }, "stops",
+       "stops below white the codes 1..255 span with edge.response: log, linear = "
+       "2^(log_stops·(code / 255 − 1))")
+      .Range(Closed(ImageResponse::kMinLogStops, ImageResponse::kMaxLogStops));
   s->AddCustom(
       "edge.response_file", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.response; },
       [](YamlMap& map, const std::string& base_dir, ImageResponse* response) -> Status {

@@ -20,6 +20,8 @@ const char* KindName(ImageResponse::Kind kind) {
       return "gamma";
     case ImageResponse::Kind::kTable:
       return "table";
+    case ImageResponse::Kind::kLog:
+      return "log";
     case ImageResponse::Kind::kSrgb:
     case ImageResponse::Kind::kAuto:
       break;
@@ -27,30 +29,42 @@ const char* KindName(ImageResponse::Kind kind) {
   return "srgb";
 }
 
-// A response as Name() writes it ("srgb", "gamma 1.8"); `where` locates it in messages.
+// A response as Name() writes it ("srgb", "gamma 1.8", "log 10"); `where` locates it in
+// messages.
 StatusOr<ImageResponse> ResponseFromName(const std::string& name, const std::string& where) {
+  if (name == "srgb") return ImageResponse();
+  // "<kind> <number>": the number after the prefix, the whole rest of the name.
+  const auto number_after = [&name](const std::string& prefix, double* value) {
+    if (name.rfind(prefix, 0) != 0) return false;
+    size_t used = 0;
+    try {
+      *value = std::stod(name.substr(prefix.size()), &used);
+    } catch (const std::exception&) {
+      return false;
+    }
+    return used > 0 && prefix.size() + used == name.size();
+  };
   ImageResponse response;
-  if (name == "srgb") return response;
-  response.kind = ImageResponse::Kind::kGamma;
-  size_t used = 0;
-  try {
-    if (name.rfind("gamma ", 0) == 0) response.gamma = std::stod(name.substr(6), &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || 6 + used != name.size() || !response.IsValid()) {
+  double value = 0.0;
+  if (number_after("gamma ", &value)) response = ImageResponse::Gamma(value);
+  if (number_after("log ", &value)) response = ImageResponse::Log(value);
+  if (response.kind == ImageResponse::Kind::kSrgb || !response.IsValid()) {
     return Status::InvalidInput(
-        fmt::format("{}: '{}' is not a response (srgb, or gamma G with G in [{}, {}])", where, name,
-                    ImageResponse::kMinGamma, ImageResponse::kMaxGamma));
+        fmt::format("{}: '{}' is not a response (srgb, gamma G with G in [{}, {}], or log S with "
+                    "S in [{}, {}])",
+                    where, name, ImageResponse::kMinGamma, ImageResponse::kMaxGamma,
+                    ImageResponse::kMinLogStops, ImageResponse::kMaxLogStops));
   }
   return response;
 }
 
-// The response of the file's `response` (srgb | gamma | table), `gamma` and `table_file` keys.
+// The response of the file's `response` (srgb | gamma | table | log), `gamma`, `table_file`
+// and `log_stops` keys.
 StatusOr<ImageResponse> ParseResponse(YamlMap* map) {
   int kind = -1;
-  BCOT_RETURN_IF_ERROR(map->GetOptionalChoice("response", {"srgb", "gamma", "table"}, &kind));
-  if (kind < 0) return map->Error("response", "missing (srgb | gamma | table)");
+  BCOT_RETURN_IF_ERROR(
+      map->GetOptionalChoice("response", {"srgb", "gamma", "table", "log"}, &kind));
+  if (kind < 0) return map->Error("response", "missing (srgb | gamma | table | log)");
   ImageResponse response;
   if (kind == 2) {
     response.kind = ImageResponse::Kind::kTable;
@@ -67,6 +81,15 @@ StatusOr<ImageResponse> ParseResponse(YamlMap* map) {
                                              ImageResponse::kMinGamma, ImageResponse::kMaxGamma));
     }
   }
+  if (kind == 3) {
+    response.kind = ImageResponse::Kind::kLog;
+    BCOT_RETURN_IF_ERROR(map->Get("log_stops", &response.log_stops));
+    if (!response.IsValid()) {
+      return map->Error("log_stops",
+                        fmt::format("{} is outside [{}, {}]", response.log_stops,
+                                    ImageResponse::kMinLogStops, ImageResponse::kMaxLogStops));
+    }
+  }
   return response;
 }
 
@@ -80,6 +103,9 @@ std::string FormatImageResponseRecord(const ImageResponseRecord& record) {
   if (record.response.kind == ImageResponse::Kind::kGamma) {
     out << YAML::Key << "gamma" << YAML::Value << record.response.gamma;
   }
+  if (record.response.kind == ImageResponse::Kind::kLog) {
+    out << YAML::Key << "log_stops" << YAML::Value << record.response.log_stops;
+  }
   if (record.response.kind == ImageResponse::Kind::kTable) {
     out << YAML::Key << "table_file" << YAML::Value << record.response.table_file;
   }
@@ -92,8 +118,11 @@ std::string FormatImageResponseRecord(const ImageResponseRecord& record) {
     for (const ResponseScore& score : record.scores) {
       out << YAML::Flow << YAML::BeginMap;
       out << YAML::Key << "response" << YAML::Value << score.response.Name();
-      for (const auto& [key, value] : {std::pair{"spread_px", score.spread_px},
-                                       std::pair{"standard_error_px", score.standard_error_px}}) {
+      for (const auto& [key, value] :
+           {std::pair{"slope_px", score.slope_px},
+            std::pair{"slope_standard_error_px", score.slope_standard_error_px},
+            std::pair{"spread_px", score.spread_px},
+            std::pair{"spread_standard_error_px", score.spread_standard_error_px}}) {
         out << YAML::Key << key << YAML::Value;
         if (std::isfinite(value)) {
           out << fmt::format("{:.4f}", value);
@@ -109,8 +138,10 @@ std::string FormatImageResponseRecord(const ImageResponseRecord& record) {
   out << YAML::EndMap;
   return fmt::format(
       "# bcot annotate: the cameras' response the edges were decoded with (edge.response);\n"
-      "# candidates: interquartile range (px) of the edge offsets at the first frame's pose and\n"
-      "# its standard error; the first is kept unless another is clearly better\n{}\n",
+      "# candidates, at the first frame's pose: the polarity slope of the edges (px; how far they\n"
+      "# sit towards their bright side, 0 under the right response) and the spread of their\n"
+      "# offsets (px), each with its standard error; the first is kept unless one of the two\n"
+      "# clearly says otherwise (optim/response_estimation.h)\n{}\n",
       out.c_str());
 }
 
@@ -137,8 +168,11 @@ StatusOr<ImageResponseRecord> ReadImageResponseFile(const std::string& annotatio
       std::string name;
       BCOT_RETURN_IF_ERROR(entry.Get("response", &name));
       BCOT_ASSIGN_OR_RETURN(score.response, ResponseFromName(name, entry.Where("response")));
-      for (const auto& [key, value] : {std::pair{"spread_px", &score.spread_px},
-                                       std::pair{"standard_error_px", &score.standard_error_px}}) {
+      for (const auto& [key, value] :
+           {std::pair{"slope_px", &score.slope_px},
+            std::pair{"slope_standard_error_px", &score.slope_standard_error_px},
+            std::pair{"spread_px", &score.spread_px},
+            std::pair{"spread_standard_error_px", &score.spread_standard_error_px}}) {
         if (entry.Has(key) && entry.Node(key).IsNull()) {
           *value = std::numeric_limits<double>::quiet_NaN();
         } else {

@@ -14,6 +14,8 @@ bool ImageResponse::IsValid() const {
   switch (kind) {
     case Kind::kGamma:
       return gamma >= kMinGamma && gamma <= kMaxGamma;
+    case Kind::kLog:
+      return log_stops >= kMinLogStops && log_stops <= kMaxLogStops;
     case Kind::kTable:
       if (table.size() != 256 || !(table.back() > 0.0f)) return false;
       for (size_t i = 0; i < table.size(); ++i) {
@@ -34,6 +36,8 @@ std::string ImageResponse::Name() const {
       return "srgb";
     case Kind::kGamma:
       return fmt::format("gamma {}", gamma);
+    case Kind::kLog:
+      return fmt::format("log {}", log_stops);
     case Kind::kTable:
       return "table " + table_file;
     case Kind::kAuto:
@@ -81,6 +85,8 @@ LinearTable::LinearTable(const ImageResponse& response) {
       linear = response.table[i] / static_cast<double>(response.table.back());
     } else if (response.kind == ImageResponse::Kind::kGamma) {
       linear = std::pow(v, response.gamma);
+    } else if (response.kind == ImageResponse::Kind::kLog) {
+      linear = i == 0 ? 0.0 : std::exp2(response.log_stops * (v - 1.0));
     } else {
       linear = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
     }

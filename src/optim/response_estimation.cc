@@ -7,13 +7,34 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
+#include "bcot/core/se3.h"
 #include "bcot/optim/edge_lines.h"
 #include "bcot/optim/silhouette.h"
 #include "violations.h"
 
 namespace bcot {
 namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// One measured edge line: its offset μ from the contour at the solved pose, σ and its polarity
+// feature.
+struct PolarLine {
+  double mean_px = 0.0;
+  double sigma_px = 1.0;
+  double polarity = 0.0;
+};
+
+// The median of `values` (non-empty; reordered).
+double Median(std::vector<double>* values) {
+  const size_t k = values->size() / 2;
+  std::nth_element(values->begin(), values->begin() + k, values->end());
+  return (*values)[k];
+}
 
 // Interquartile range of `values` (non-empty; reordered).
 double InterquartileRange(std::vector<double>* values) {
@@ -43,14 +64,56 @@ double BootstrapStandardError(const std::vector<double>& values, int samples) {
   return std::sqrt(std::max(0.0, sum_squares / samples - mean * mean));
 }
 
-// The offsets μ of `problem`'s edge lines in every view at `rig_from_objcentre`.
-std::vector<double> EdgeOffsets(const FrameProblem& problem, const std::vector<FrameView>& views,
-                                const Eigen::Isometry3d& rig_from_objcentre) {
+// The polarity feature of the edge across `line` (header): per channel PowerShiftRate of its
+// mean linear levels over s ∈ [−window, −1] (inside) and [1, window] (outside), signed
+// positive when the outside is brighter, weighted by the channel's share d_k² of the contrast
+// (the fit's scalar profile is d̂·I). Clipped channels are left out, as the fit leaves them out.
+double PolarityFeature(const cv::Mat3b& image, const LinearTable& table,
+                       const CorrespondenceLine& line, const EdgeLineOptions& options) {
+  const int half = static_cast<int>(std::floor(options.window_px / options.step_px + 1e-9));
+  Eigen::Vector3d inside = Eigen::Vector3d::Zero(), outside = Eigen::Vector3d::Zero();
+  Eigen::Vector3d peak = Eigen::Vector3d::Zero();
+  int inside_count = 0, outside_count = 0;
+  for (int k = -half; k <= half; ++k) {
+    const double s = k * options.step_px;
+    const Eigen::Vector2d p = line.centre + s * line.normal;
+    if (!CanSampleBilinear(image.size(), p)) return 0.0;
+    peak = peak.cwiseMax(PeakLinearRgb(image, table, p));
+    if (s <= -1.0) {
+      inside += SampleLinearRgb(image, table, p);
+      ++inside_count;
+    } else if (s >= 1.0) {
+      outside += SampleLinearRgb(image, table, p);
+      ++outside_count;
+    }
+  }
+  if (inside_count == 0 || outside_count == 0) return 0.0;
+  inside /= inside_count;
+  outside /= outside_count;
+  double weighted = 0.0, weights = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    if (peak[c] >= options.clip_level) continue;
+    const double d = inside[c] - outside[c];
+    const double dark = std::min(inside[c], outside[c]);
+    const double bright = std::max(inside[c], outside[c]);
+    const double rate = PowerShiftRate(dark > 0.0 ? bright / dark : kMaxLevelRatio);
+    weighted += d * d * (outside[c] > inside[c] ? rate : -rate);
+    weights += d * d;
+  }
+  return weights > 0.0 ? weighted / weights : 0.0;
+}
+
+// The edge lines `problem` measures at `rig_from_objcentre` (a pose it solved) in every view.
+std::vector<PolarLine> MeasurePolarLines(const FrameProblem& problem,
+                                         const std::vector<FrameView>& views,
+                                         const Eigen::Isometry3d& rig_from_objcentre) {
   // Model points are read from the contour only (as the edge stage does).
   constexpr int kPointStridePx = 64;
   const RayCaster& caster = problem.caster();
+  const EdgeLineOptions& options = problem.options().edge.lines;
+  const LinearTable table(options.response);
   const Eigen::Isometry3d objcentre_from_template = caster.mesh().objcentre_from_template();
-  std::vector<double> offsets;
+  std::vector<PolarLine> lines;
   for (const FrameView& view : views) {
     if (view.weight == 0.0) continue;
     const Silhouette silhouette = RenderSilhouette(
@@ -58,20 +121,100 @@ std::vector<double> EdgeOffsets(const FrameProblem& problem, const std::vector<F
         problem.options().region.contour, kPointStridePx);
     const StatusOr<CorrespondenceLines> measured =
         BuildEdgeLines(caster, *view.camera, view.cam_from_rig, rig_from_objcentre, *view.image,
-                       silhouette, problem.options().edge.lines);
+                       silhouette, options);
     BCOT_CHECK(measured.ok());  // validated with the problem's options
-    for (const CorrespondenceLine& line : measured->lines) offsets.push_back(line.mean_px);
+    for (const CorrespondenceLine& line : measured->lines) {
+      lines.push_back(
+          {line.mean_px, line.sigma_px, PolarityFeature(*view.image, table, line, options)});
+    }
   }
-  return offsets;
+  return lines;
+}
+
+// The polarity slope β of `lines` (header) and its standard error: weighted (1/σ²) least
+// squares of μ − median(μ) on the feature, lines beyond kOutlierSigmas robust standard
+// deviations (IQR / 1.349) of μ left out; the standard error is the sandwich (heteroscedasticity-
+// consistent) one, as the lines' errors are not all of the size their σ says. NaN when no kept
+// line has a feature.
+std::pair<double, double> PolaritySlope(const std::vector<PolarLine>& lines) {
+  constexpr double kOutlierSigmas = 3.0;
+  std::vector<double> offsets;
+  for (const PolarLine& line : lines) offsets.push_back(line.mean_px);
+  const double median = Median(&offsets);
+  const double bound = kOutlierSigmas * InterquartileRange(&offsets) / 1.349;
+  double sff = 0.0, sfm = 0.0;
+  for (const PolarLine& line : lines) {
+    if (std::abs(line.mean_px - median) > bound) continue;
+    const double w = 1.0 / (line.sigma_px * line.sigma_px);
+    sff += w * line.polarity * line.polarity;
+    sfm += w * line.polarity * (line.mean_px - median);
+  }
+  if (!(sff > 0.0)) return {kNaN, kNaN};
+  const double slope = sfm / sff;
+  double meat = 0.0;
+  for (const PolarLine& line : lines) {
+    if (std::abs(line.mean_px - median) > bound) continue;
+    const double w = 1.0 / (line.sigma_px * line.sigma_px);
+    const double error = line.mean_px - median - slope * line.polarity;
+    meat += w * w * line.polarity * line.polarity * error * error;
+  }
+  return {slope, std::sqrt(meat) / sff};
+}
+
+// Test 1 of the header: the index of the candidate with the smallest |β| if the first's |β| is
+// clearly not zero and clearly larger; else 0.
+int PolarityChoice(const std::vector<ResponseScore>& scores,
+                   const ResponseEstimationOptions& options) {
+  int nearest = 0;
+  for (size_t c = 1; c < scores.size(); ++c) {
+    if (std::abs(scores[c].slope_px) < std::abs(scores[nearest].slope_px)) {
+      nearest = static_cast<int>(c);
+    }
+  }
+  const ResponseScore& first = scores.front();
+  const ResponseScore& near = scores[nearest];
+  const bool first_off =
+      std::abs(first.slope_px) > options.min_slope_z * first.slope_standard_error_px;
+  const bool clearly_nearer =
+      std::abs(first.slope_px) - std::abs(near.slope_px) >
+      options.min_slope_z * std::hypot(first.slope_standard_error_px, near.slope_standard_error_px);
+  return first_off && clearly_nearer ? nearest : 0;
+}
+
+// Test 2 of the header: the index of the candidate whose offsets spread least if clearly less
+// than the first's; else 0.
+int ConsistencyChoice(const std::vector<ResponseScore>& scores,
+                      const ResponseEstimationOptions& options) {
+  int tightest = 0;
+  for (size_t c = 1; c < scores.size(); ++c) {
+    if (scores[c].spread_px < scores[tightest].spread_px) tightest = static_cast<int>(c);
+  }
+  const ResponseScore& first = scores.front();
+  const ResponseScore& tight = scores[tightest];
+  return first.spread_px - tight.spread_px >
+                 options.min_spread_z *
+                     std::hypot(first.spread_standard_error_px, tight.spread_standard_error_px)
+             ? tightest
+             : 0;
 }
 
 }  // namespace
+
+double PowerShiftRate(double rho) {
+  if (!(rho > 1.0 + 1e-9)) return 0.0;
+  rho = std::min(rho, kMaxLevelRatio);
+  const double half = 0.5 * (1.0 + rho);
+  const double fraction_rate =
+      half * (rho * std::log(rho) / (1.0 + rho) - std::log(half)) / (rho - 1.0);
+  return std::sqrt(2.0 * kPi) * fraction_rate;
+}
 
 std::vector<ImageResponse> DefaultResponseCandidates() {
   std::vector<ImageResponse> candidates = {ImageResponse()};
   for (int tenths = 10; tenths <= 30; tenths += 4) {
     candidates.push_back(ImageResponse::Gamma(tenths / 10.0));
   }
+  for (const double stops : {8.0, 10.0, 12.0}) candidates.push_back(ImageResponse::Log(stops));
   return candidates;
 }
 
@@ -84,9 +227,11 @@ Status ResponseEstimationOptions::Validate() const {
           fmt::format("candidate {} is not a valid known response", response.Name()));
     }
   }
-  if (!(min_improvement_z >= 0.0) || !std::isfinite(min_improvement_z)) {
-    violations.push_back(
-        fmt::format("min_improvement_z = {}, must be finite and >= 0", min_improvement_z));
+  if (!(min_slope_z >= 0.0) || !std::isfinite(min_slope_z)) {
+    violations.push_back(fmt::format("min_slope_z = {}, must be finite and >= 0", min_slope_z));
+  }
+  if (!(min_spread_z >= 0.0) || !std::isfinite(min_spread_z)) {
+    violations.push_back(fmt::format("min_spread_z = {}, must be finite and >= 0", min_spread_z));
   }
   if (bootstrap_samples < 10) {
     violations.push_back(fmt::format("bootstrap_samples = {}, must be >= 10", bootstrap_samples));
@@ -102,7 +247,6 @@ StatusOr<ResponseEstimate> EstimateImageResponse(const FrameProblem& problem,
                                                  const ResponseEstimationOptions& options) {
   BCOT_RETURN_IF_ERROR(options.Validate());
   ResponseEstimate estimate;
-  int best = -1;
   for (const ImageResponse& response : options.candidates) {
     FrameProblemOptions frame = problem.options();
     frame.edge.lines.response = response;
@@ -111,36 +255,34 @@ StatusOr<ResponseEstimate> EstimateImageResponse(const FrameProblem& problem,
     Eigen::Isometry3d solved = rig_from_objcentre;
     ResponseScore score;
     score.response = response;
-    score.spread_px = std::numeric_limits<double>::quiet_NaN();
-    score.standard_error_px = std::numeric_limits<double>::quiet_NaN();
+    score.slope_px = kNaN;
+    score.slope_standard_error_px = kNaN;
+    score.spread_px = kNaN;
+    score.spread_standard_error_px = kNaN;
     if (candidate.SolveEdges(views, &solved)) {
-      std::vector<double> offsets = EdgeOffsets(candidate, views, solved);
-      score.lines = static_cast<int>(offsets.size());
+      const std::vector<PolarLine> lines = MeasurePolarLines(candidate, views, solved);
+      score.lines = static_cast<int>(lines.size());
       if (score.lines >= frame.edge.min_lines) {
-        score.standard_error_px = BootstrapStandardError(offsets, options.bootstrap_samples);
+        std::tie(score.slope_px, score.slope_standard_error_px) = PolaritySlope(lines);
+        std::vector<double> offsets;
+        for (const PolarLine& line : lines) offsets.push_back(line.mean_px);
+        score.spread_standard_error_px = BootstrapStandardError(offsets, options.bootstrap_samples);
         score.spread_px = InterquartileRange(&offsets);
       }
     }
     estimate.scores.push_back(score);
-    const int index = static_cast<int>(estimate.scores.size()) - 1;
-    if (score.spread_px <
-        (best < 0 ? std::numeric_limits<double>::infinity() : estimate.scores[best].spread_px)) {
-      best = index;
-    }
   }
-  if (best < 0) {
-    return Status::InvalidInput(fmt::format(
-        "the image response cannot be estimated: no candidate response left {} edge lines",
-        problem.options().edge.min_lines));
-  }
-  // The default unless the best candidate is clearly better (see the header).
   const ResponseScore& first = estimate.scores.front();
-  const ResponseScore& winner = estimate.scores[best];
-  const double difference_se = std::hypot(first.standard_error_px, winner.standard_error_px);
-  const bool clearly_better =
-      !std::isfinite(first.spread_px) ||
-      first.spread_px - winner.spread_px > options.min_improvement_z * difference_se;
-  estimate.response = clearly_better ? winner.response : first.response;
+  if (!std::isfinite(first.slope_px)) {
+    return Status::InvalidInput(fmt::format(
+        "the image response cannot be estimated: fewer than {} edge lines with a contrast "
+        "decoded with the default response ({})",
+        problem.options().edge.min_lines, first.response.Name()));
+  }
+  const int polarity = PolarityChoice(estimate.scores, options);
+  estimate.response =
+      estimate.scores[polarity > 0 ? polarity : ConsistencyChoice(estimate.scores, options)]
+          .response;
   return estimate;
 }
 

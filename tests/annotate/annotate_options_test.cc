@@ -149,7 +149,12 @@ TEST(AnnotateOptionsTest, ImageResponseParsesAndNamesBadValues) {
   ASSERT_TRUE(automatic.ok()) << automatic.status().message();
   EXPECT_EQ(automatic->tracker.frame.edge.lines.response.kind, ImageResponse::Kind::kAuto);
   EXPECT_THAT(ParseText("edge:\n  response: linear\n").status().message(),
-              HasSubstr("'linear' is not one of srgb | gamma | table | auto"));
+              HasSubstr("'linear' is not one of srgb | gamma | log | table | auto"));
+  const StatusOr<AnnotateOptions> log = ParseText("edge:\n  response: log\n  log_stops: 12\n");
+  ASSERT_TRUE(log.ok()) << log.status().message();
+  EXPECT_EQ(log->tracker.frame.edge.lines.response, ImageResponse::Log(12.0));
+  EXPECT_THAT(ParseText("edge:\n  response: log\n  log_stops: 2\n").status().message(),
+              HasSubstr("run.yaml:3: edge.log_stops = 2"));
   EXPECT_THAT(ParseText("edge:\n  response: gamma\n  gamma: 0.1\n").status().message(),
               HasSubstr("run.yaml:3: edge.gamma = 0.1"));
 

@@ -25,23 +25,37 @@ TEST(ImageResponseFileTest, RoundTripsEveryField) {
   ImageResponseRecord record;
   record.response = ImageResponse::Gamma(1.4);
   record.estimated = true;
-  record.scores = {{ImageResponse(), 0.8034, 0.0453, 700},
-                   {kLinear, std::numeric_limits<double>::quiet_NaN(),
-                    std::numeric_limits<double>::quiet_NaN(), 3}};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  record.scores = {{ImageResponse(), 0.2034, 0.0312, 0.61, 0.025, 700},
+                   {ImageResponse::Log(8.0), -0.0125, 0.0453, 0.5525, 0.0231, 690},
+                   {kLinear, nan, nan, nan, nan, 3}};
   ASSERT_TRUE(WriteImageResponseFile(dir.path(), record).ok());
   const StatusOr<ImageResponseRecord> read = ReadImageResponseFile(dir.path());
   ASSERT_TRUE(read.ok()) << read.status().message();
   EXPECT_EQ(read->response, record.response);
   EXPECT_TRUE(read->estimated);
   EXPECT_TRUE(read->estimate_error.empty());
-  ASSERT_EQ(read->scores.size(), 2u);
+  ASSERT_EQ(read->scores.size(), 3u);
   EXPECT_EQ(read->scores[0].response, ImageResponse());
-  EXPECT_DOUBLE_EQ(read->scores[0].spread_px, 0.8034);
-  EXPECT_DOUBLE_EQ(read->scores[0].standard_error_px, 0.0453);
+  EXPECT_DOUBLE_EQ(read->scores[0].slope_px, 0.2034);
+  EXPECT_DOUBLE_EQ(read->scores[0].slope_standard_error_px, 0.0312);
   EXPECT_EQ(read->scores[0].lines, 700);
-  EXPECT_EQ(read->scores[1].response, kLinear);
-  EXPECT_TRUE(std::isnan(read->scores[1].spread_px));
-  EXPECT_EQ(read->scores[1].lines, 3);
+  EXPECT_EQ(read->scores[1].response, ImageResponse::Log(8.0));
+  EXPECT_DOUBLE_EQ(read->scores[1].slope_px, -0.0125);
+  EXPECT_DOUBLE_EQ(read->scores[1].spread_px, 0.5525);
+  EXPECT_DOUBLE_EQ(read->scores[1].spread_standard_error_px, 0.0231);
+  EXPECT_EQ(read->scores[1].lines, 690);
+  EXPECT_EQ(read->scores[2].response, kLinear);
+  EXPECT_TRUE(std::isnan(read->scores[2].slope_px));
+  EXPECT_TRUE(std::isnan(read->scores[2].slope_standard_error_px));
+  EXPECT_TRUE(std::isnan(read->scores[2].spread_px));
+  EXPECT_EQ(read->scores[2].lines, 3);
+
+  record.response = ImageResponse::Log(12.0);
+  ASSERT_TRUE(WriteImageResponseFile(dir.path(), record).ok());
+  const StatusOr<ImageResponseRecord> read_log = ReadImageResponseFile(dir.path());
+  ASSERT_TRUE(read_log.ok()) << read_log.status().message();
+  EXPECT_EQ(read_log->response, ImageResponse::Log(12.0));
 
   ImageResponseRecord failed;
   failed.estimate_error = "no candidate response left 20 edge lines";
@@ -62,14 +76,22 @@ TEST(ImageResponseFileTest, BadFilesAreErrorsNamingTheFileAndField) {
     EXPECT_FALSE(read.ok());
     return read.status().message();
   };
-  EXPECT_THAT(error_of("response: linear\nestimated: false\n"),
-              AllOf(HasSubstr(path), HasSubstr("response"), HasSubstr("srgb | gamma | table")));
+  EXPECT_THAT(
+      error_of("response: linear\nestimated: false\n"),
+      AllOf(HasSubstr(path), HasSubstr("response"), HasSubstr("srgb | gamma | table | log")));
   EXPECT_THAT(error_of("response: gamma\ngamma: 9\nestimated: true\n"),
               AllOf(HasSubstr(path + ":2"), HasSubstr("gamma"), HasSubstr("outside")));
+  EXPECT_THAT(error_of("response: log\nlog_stops: 40\nestimated: true\n"),
+              AllOf(HasSubstr(path + ":2"), HasSubstr("log_stops"), HasSubstr("outside")));
   EXPECT_THAT(error_of("response: srgb\n"), HasSubstr("estimated"));
-  EXPECT_THAT(error_of("response: srgb\nestimated: true\ncandidates:\n  - {response: gamma x, "
-                       "spread_px: 1, standard_error_px: 0.1, lines: 5}\n"),
+  const std::string candidate = "response: srgb\nestimated: true\ncandidates:\n  - {response: ";
+  const std::string scores =
+      ", slope_px: 0.1, slope_standard_error_px: 0.01, spread_px: 0.5, "
+      "spread_standard_error_px: 0.02, lines: 5}\n";
+  EXPECT_THAT(error_of(candidate + "gamma x" + scores),
               AllOf(HasSubstr("candidates[0].response"), HasSubstr("'gamma x'")));
+  EXPECT_THAT(error_of(candidate + "log 1" + scores),
+              AllOf(HasSubstr("candidates[0].response"), HasSubstr("'log 1'")));
   EXPECT_THAT(error_of("response: srgb\nestimated: true\ncolour: red\n"), HasSubstr("colour"));
   // A configured response needs no file; auto needs one.
   const StatusOr<ImageResponseRecord> configured =

@@ -94,8 +94,11 @@ int main(int argc, char** argv) {
   app.add_option("--dump", dump_path, "Write every measured line's profile to this file");
   int response_frames = 0;
   app.add_option("--response-frames", response_frames,
-                 "Score the response candidates (EstimateImageResponse) on every 5th of the "
-                 "first N frames from the true pose, then exit");
+                 "Score the response candidates (EstimateImageResponse: polarity slope and spread, "
+                 "px) on every 5th of the first N frames from the true pose, then exit");
+  std::vector<std::string> candidate_tables;
+  app.add_option("--candidate-table", candidate_tables,
+                 "With --response-frames: also score this response table (repeatable)");
   CLI11_PARSE(app, argc, argv);
 
   const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, overrides);
@@ -117,6 +120,16 @@ int main(int argc, char** argv) {
 
   if (response_frames > 0) {
     const FrameProblem problem(caster, frame);
+    ResponseEstimationOptions estimation;
+    for (const std::string& path : candidate_tables) {
+      StatusOr<std::vector<float>> table = ReadResponseTable(path);
+      if (!table.ok()) return Fail(table.status().message());
+      ImageResponse response;
+      response.kind = ImageResponse::Kind::kTable;
+      response.table_file = path;
+      response.table = *std::move(table);
+      estimation.candidates.push_back(response);
+    }
     for (int f = 0; f < std::min(response_frames, sequence->num_frames); f += 5) {
       std::vector<cv::Mat3b> images;
       std::vector<FrameView> views;
@@ -134,12 +147,13 @@ int main(int argc, char** argv) {
         views.push_back(view);
       }
       const StatusOr<ResponseEstimate> estimate =
-          EstimateImageResponse(problem, views, (*gt)[f] * template_from_objcentre);
+          EstimateImageResponse(problem, views, (*gt)[f] * template_from_objcentre, estimation);
       if (!estimate.ok()) return Fail(estimate.status().message());
       std::printf("frame %3d best %-10s |", f, estimate->response.Name().c_str());
       for (const ResponseScore& score : estimate->scores) {
-        std::printf(" %s %.3f±%.3f (%d)", score.response.Name().c_str(), score.spread_px,
-                    score.standard_error_px, score.lines);
+        std::printf(" %s slope %+.3f±%.3f spread %.3f±%.3f (%d)", score.response.Name().c_str(),
+                    score.slope_px, score.slope_standard_error_px, score.spread_px,
+                    score.spread_standard_error_px, score.lines);
       }
       std::printf("\n");
     }

@@ -22,6 +22,17 @@ TEST(ImageResponseTest, PowerLawsDecodeCodesByTheirExponent) {
   EXPECT_NEAR(srgb[128], std::pow(128 / 255.0, 2.2), 0.01);
 }
 
+// A log encoding: every code step is the same ratio of light, 2^(stops / 255); white is 1 and
+// code 0 is black.
+TEST(LinearTableTest, LogEncodingSpansItsStops) {
+  const LinearTable log(ImageResponse::Log(8.0));
+  EXPECT_FLOAT_EQ(log[255], 1.0f);
+  EXPECT_FLOAT_EQ(log[0], 0.0f);
+  EXPECT_NEAR(log[1], std::exp2(-8.0 * 254.0 / 255.0), 1e-9);
+  EXPECT_NEAR(log[128] / log[127], std::exp2(8.0 / 255.0), 1e-6);
+  EXPECT_NEAR(std::log2(log[255] / log[1]), 8.0 * 254.0 / 255.0, 1e-5);
+}
+
 TEST(ImageResponseTest, NamesValidityAndEquality) {
   const ImageResponse srgb;
   const ImageResponse linear = ImageResponse::Gamma(1.0);
@@ -35,7 +46,18 @@ TEST(ImageResponseTest, NamesValidityAndEquality) {
   EXPECT_FALSE(automatic.IsResolved());
   EXPECT_FALSE(ImageResponse::Gamma(0.1).IsValid());
   EXPECT_FALSE(ImageResponse::Gamma(5.5).IsValid());
-  // The exponent matters only to a power law.
+  EXPECT_EQ(ImageResponse::Log(10.0).Name(), "log 10");
+  EXPECT_TRUE(ImageResponse::Log(10.0).IsValid());
+  EXPECT_FALSE(ImageResponse::Log(3.0).IsValid());
+  EXPECT_FALSE(ImageResponse::Log(21.0).IsValid());
+  EXPECT_NE(ImageResponse::Log(10.0), ImageResponse::Log(12.0));
+  // The exponent matters only to a power law, the stops only to a log encoding.
+  ImageResponse log_with_gamma = ImageResponse::Log(10.0);
+  log_with_gamma.gamma = 1.0;
+  EXPECT_EQ(log_with_gamma, ImageResponse::Log(10.0));
+  ImageResponse gamma_with_stops = ImageResponse::Gamma(1.0);
+  gamma_with_stops.log_stops = 5.0;
+  EXPECT_EQ(gamma_with_stops, linear);
   EXPECT_EQ(srgb, ImageResponse());
   EXPECT_NE(linear, ImageResponse::Gamma(1.2));
   EXPECT_NE(linear, srgb);

@@ -3,11 +3,13 @@
 // score), so that re-annotating frames (--frames) and regenerating the report use the same
 // response as the run that wrote it.
 //
-//   response: gamma          # srgb | gamma | table
-//   gamma: 1                 # with response: gamma (table_file: FILE with response: table)
+//   response: gamma          # srgb | gamma | log | table
+//   gamma: 1                 # with response: gamma (log_stops: S with response: log,
+//                            # table_file: FILE with response: table)
 //   estimated: true          # false: as configured
-//   candidates:              # with estimated: the edge offsets' interquartile range (px) per
-//     - {response: srgb, spread_px: 0.72, lines: 690}   # candidate at the first frame's pose
+//   candidates:              # with estimated: every candidate's score (ResponseScore)
+//     - {response: srgb, slope_px: 0.2, slope_standard_error_px: 0.03, spread_px: 0.61,
+//        spread_standard_error_px: 0.03, lines: 690}
 #pragma once
 
 #include <string>

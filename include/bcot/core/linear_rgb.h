@@ -3,7 +3,8 @@
 // towards one side of the step (towards the bright side when a linear camera's codes are decoded
 // as sRGB: docs/notes/issue12_response.md). The response is the camera's: sRGB for most
 // consumer cameras and renderers, a power law (often γ = 1, i.e. linear) for machine-vision
-// cameras.
+// cameras, a logarithm for log-encoding cameras and film-like view transforms (Blender's
+// Filmic is close to log over its middle range).
 #pragma once
 
 #include <Eigen/Core>
@@ -23,12 +24,17 @@ struct ImageResponse {
     kGamma,  // (c / 255)^gamma; gamma = 1: a linear camera
     kAuto,   // not known: estimated from the images (optim/response_estimation.h)
     kTable,  // measured: `table` (from `table_file`, ReadResponseTable)
+    kLog,    // 2^(log_stops·(c / 255 − 1)) for c > 0, 0 for c = 0: log_stops stops below white
   };
   static constexpr double kMinGamma = 0.2;
   static constexpr double kMaxGamma = 5.0;
+  static constexpr double kMinLogStops = 4.0;
+  static constexpr double kMaxLogStops = 20.0;
   Kind kind = Kind::kSrgb;
   // Exponent of kGamma; in [kMinGamma, kMaxGamma]. Unused by the other kinds.
   double gamma = 2.2;
+  // Stops (factors of 2) the codes 1..255 of kLog span; in [kMinLogStops, kMaxLogStops].
+  double log_stops = 10.0;
   // kTable: the linear value of each code 0..255 (non-decreasing, finite, >= 0, last > 0; any
   // scale: LinearTable divides by the last), read from table_file.
   std::string table_file;
@@ -40,6 +46,12 @@ struct ImageResponse {
     response.gamma = exponent;
     return response;
   }
+  static ImageResponse Log(double stops) {
+    ImageResponse response;
+    response.kind = Kind::kLog;
+    response.log_stops = stops;
+    return response;
+  }
   static ImageResponse Auto() {
     ImageResponse response;
     response.kind = Kind::kAuto;
@@ -49,11 +61,13 @@ struct ImageResponse {
   bool IsValid() const;
   // A response codes can be decoded with (not kAuto).
   bool IsResolved() const { return kind != Kind::kAuto; }
-  // "srgb", "gamma 1.8", "table <file>" or "auto".
+  // "srgb", "gamma 1.8", "log 10", "table <file>" or "auto".
   std::string Name() const;
-  // Same kind and, for kGamma, the same exponent, for kTable the same values.
+  // Same kind and, for kGamma, the same exponent, for kLog the same stops, for kTable the same
+  // values.
   bool operator==(const ImageResponse& other) const {
     return kind == other.kind && (kind != Kind::kGamma || gamma == other.gamma) &&
+           (kind != Kind::kLog || log_stops == other.log_stops) &&
            (kind != Kind::kTable || table == other.table);
   }
   bool operator!=(const ImageResponse& other) const { return !(*this == other); }
