@@ -241,42 +241,57 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
   return true;
 }
 
-EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const LinearTable& table,
-                         const Eigen::Vector2d& centre, const Eigen::Vector2d& normal,
-                         const EdgeLineOptions& options, EdgeFit* fit) {
+bool SampleEdgeLine(const cv::Mat3b& image, const LinearTable& table, const Eigen::Vector2d& centre,
+                    const Eigen::Vector2d& normal, const EdgeLineOptions& options,
+                    EdgeLineSamples* samples) {
   const double h = options.step_px;
   const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
   if (!CanSampleBilinear(image.size(), centre - half * h * normal) ||
       !CanSampleBilinear(image.size(), centre + half * h * normal)) {
-    return EdgeAcross::kOffImage;
+    return false;
   }
-  std::vector<Eigen::Vector3d> colors(2 * half + 1);
+  samples->colors.resize(2 * half + 1);
   Eigen::Vector3d inside = Eigen::Vector3d::Zero(), outside = Eigen::Vector3d::Zero();
   Eigen::Vector3d peak = Eigen::Vector3d::Zero();
   int inside_count = 0, outside_count = 0;
   for (int k = -half; k <= half; ++k) {
     const double s = k * h;
-    colors[k + half] = SampleLinearRgb(image, table, centre + s * normal);
+    Eigen::Vector3d& color = samples->colors[k + half];
+    color = SampleLinearRgb(image, table, centre + s * normal);
     peak = peak.cwiseMax(PeakLinearRgb(image, table, centre + s * normal));
     if (s <= -1.0) {
-      inside += colors[k + half];
+      inside += color;
       ++inside_count;
     } else if (s >= 1.0) {
-      outside += colors[k + half];
+      outside += color;
       ++outside_count;
     }
   }
-  Eigen::Vector3d d = inside / std::max(1, inside_count) - outside / std::max(1, outside_count);
+  samples->inside = inside / std::max(1, inside_count);
+  samples->outside = outside / std::max(1, outside_count);
+  samples->peak = peak;
+  return true;
+}
+
+EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const LinearTable& table,
+                         const Eigen::Vector2d& centre, const Eigen::Vector2d& normal,
+                         const EdgeLineOptions& options, EdgeFit* fit) {
+  EdgeLineSamples samples;
+  if (!SampleEdgeLine(image, table, centre, normal, options, &samples)) {
+    return EdgeAcross::kOffImage;
+  }
+  Eigen::Vector3d d = samples.inside - samples.outside;
   // Clipped channels carry no contrast (see "clipping" in the header).
   for (int c = 0; c < 3; ++c) {
-    if (peak[c] >= options.clip_level) d[c] = 0.0;
+    if (samples.peak[c] >= options.clip_level) d[c] = 0.0;
   }
   if (!(d.norm() >= options.min_contrast) || d.norm() == 0.0) return EdgeAcross::kAmbiguous;
   const Eigen::Vector3d direction = d.normalized();
-  std::vector<double> profile(2 * half + 1);
-  for (int k = 0; k <= 2 * half; ++k) profile[k] = direction.dot(colors[k]);
-  return FitEdgeProfile(profile, -half * h, options, fit) ? EdgeAcross::kFound
-                                                          : EdgeAcross::kAmbiguous;
+  const int half = static_cast<int>(samples.colors.size() / 2);
+  std::vector<double> profile(samples.colors.size());
+  for (size_t k = 0; k < profile.size(); ++k) profile[k] = direction.dot(samples.colors[k]);
+  return FitEdgeProfile(profile, -half * options.step_px, options, fit) ? EdgeAcross::kFound
+                                                                        : EdgeAcross::kAmbiguous;
 }
 
 double TracedContourLengthPx(const std::vector<ContourPoint>& contour) {

@@ -65,39 +65,21 @@ double BootstrapStandardError(const std::vector<double>& values, int samples) {
 }
 
 // The polarity feature of the edge across `line` (header): per channel PowerShiftRate of its
-// mean linear levels over s ∈ [−window, −1] (inside) and [1, window] (outside), signed
-// positive when the outside is brighter, weighted by the channel's share d_k² of the contrast
-// (the fit's scalar profile is d̂·I). Clipped channels are left out, as the fit leaves them out.
+// mean linear levels inside and outside (SampleEdgeLine), signed positive when the outside is
+// brighter, weighted by the channel's share d_k² of the contrast (the fit's scalar profile is
+// d̂·I). Clipped channels are left out, as the fit leaves them out.
 double PolarityFeature(const cv::Mat3b& image, const LinearTable& table,
                        const CorrespondenceLine& line, const EdgeLineOptions& options) {
-  const int half = static_cast<int>(std::floor(options.window_px / options.step_px + 1e-9));
-  Eigen::Vector3d inside = Eigen::Vector3d::Zero(), outside = Eigen::Vector3d::Zero();
-  Eigen::Vector3d peak = Eigen::Vector3d::Zero();
-  int inside_count = 0, outside_count = 0;
-  for (int k = -half; k <= half; ++k) {
-    const double s = k * options.step_px;
-    const Eigen::Vector2d p = line.centre + s * line.normal;
-    if (!CanSampleBilinear(image.size(), p)) return 0.0;
-    peak = peak.cwiseMax(PeakLinearRgb(image, table, p));
-    if (s <= -1.0) {
-      inside += SampleLinearRgb(image, table, p);
-      ++inside_count;
-    } else if (s >= 1.0) {
-      outside += SampleLinearRgb(image, table, p);
-      ++outside_count;
-    }
-  }
-  if (inside_count == 0 || outside_count == 0) return 0.0;
-  inside /= inside_count;
-  outside /= outside_count;
+  EdgeLineSamples samples;
+  if (!SampleEdgeLine(image, table, line.centre, line.normal, options, &samples)) return 0.0;
   double weighted = 0.0, weights = 0.0;
   for (int c = 0; c < 3; ++c) {
-    if (peak[c] >= options.clip_level) continue;
-    const double d = inside[c] - outside[c];
-    const double dark = std::min(inside[c], outside[c]);
-    const double bright = std::max(inside[c], outside[c]);
+    if (samples.peak[c] >= options.clip_level) continue;
+    const double inside = samples.inside[c], outside = samples.outside[c];
+    const double d = inside - outside;
+    const double dark = std::min(inside, outside), bright = std::max(inside, outside);
     const double rate = PowerShiftRate(dark > 0.0 ? bright / dark : kMaxLevelRatio);
-    weighted += d * d * (outside[c] > inside[c] ? rate : -rate);
+    weighted += d * d * (outside > inside ? rate : -rate);
     weights += d * d;
   }
   return weights > 0.0 ? weighted / weights : 0.0;

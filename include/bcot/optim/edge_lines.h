@@ -115,6 +115,23 @@ struct EdgeFit {
 bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
                     const EdgeLineOptions& options, EdgeFit* fit);
 
+// The linear-RGB samples of one line across an edge: colors[k] at centre + (k − half)·step_px·
+// normal (half = ⌊window_px / step_px⌋), the mean colours over s ∈ [−window, −1] (inside) and
+// [1, window] (outside), and per channel the largest value a sample rests on (PeakLinearRgb),
+// which tells a clipped channel (see "Clipping" above).
+struct EdgeLineSamples {
+  std::vector<Eigen::Vector3d> colors;
+  Eigen::Vector3d inside = Eigen::Vector3d::Zero();
+  Eigen::Vector3d outside = Eigen::Vector3d::Zero();
+  Eigen::Vector3d peak = Eigen::Vector3d::Zero();
+};
+
+// Samples the line through `centre` along the unit `normal` of `image` (codes decoded by
+// `table`); false when the window or its bilinear neighbours leave the image.
+bool SampleEdgeLine(const cv::Mat3b& image, const LinearTable& table, const Eigen::Vector2d& centre,
+                    const Eigen::Vector2d& normal, const EdgeLineOptions& options,
+                    EdgeLineSamples* samples);
+
 // The edge across one line (the profile, contrast direction and fit above) through `centre`
 // along the unit `normal` (inside → outside) of `image` (BGR, its codes decoded by `table`, built
 // from options.response by the caller once for many lines): kFound and `fit` (offsets along the
