@@ -1,6 +1,7 @@
 #include "bcot/annotate/annotator.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -333,13 +334,16 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
   }
   const bool keep_templates = window || observer;
 
+  // The views' images are decoded concurrently; the first failure in view order is reported.
   const auto read_images = [&](int frame) -> StatusOr<std::vector<cv::Mat3b>> {
+    std::vector<StatusOr<cv::Mat3b>> read(rig_indices.size(), Status::Internal("not read"));
+    tbb::parallel_for(size_t{0}, rig_indices.size(), [&](size_t v) {
+      read[v] = ReadCameraImage(sequence.image_paths[rig_indices[v]][frame], (*views)[v].camera);
+    });
     std::vector<cv::Mat3b> images;
-    for (size_t v = 0; v < rig_indices.size(); ++v) {
-      BCOT_ASSIGN_OR_RETURN(
-          cv::Mat3b image,
-          ReadCameraImage(sequence.image_paths[rig_indices[v]][frame], (*views)[v].camera));
-      images.push_back(image);
+    for (StatusOr<cv::Mat3b>& image : read) {
+      if (!image.ok()) return image.status();
+      images.push_back(std::move(image).value());
     }
     return images;
   };

@@ -5,6 +5,7 @@
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <memory>
@@ -265,7 +266,7 @@ std::shared_ptr<const PoseGaussian> EdgePosterior(
   const std::unique_ptr<ceres::LossFunction> loss(EdgeLoss(edge));
   std::vector<Matrix6d> view_information(measured.size(), Matrix6d::Zero());
   std::vector<double> view_cost(measured.size(), 0.0);  // S_v
-  double num_rows = 0.0;                                 // Σ_i w_i
+  double num_rows = 0.0;                                // Σ_i w_i
   for (int row = 0; row < jacobian.num_rows; ++row) {
     Vector6d j = Vector6d::Zero();
     for (int k = jacobian.rows[row]; k < jacobian.rows[row + 1]; ++k) {
@@ -311,15 +312,16 @@ std::vector<Step> CoarseToFineSteps(const FrameProblemOptions& options) {
   return steps;
 }
 
-// Linearises view `v` at `linearisation_pose` for one step: renders its silhouette, builds
-// the dense template and/or the correspondence lines (options.energy), adds their residual
-// blocks on `parameters` to `problem` and, at level 0, records their sizes in `view_summary`.
-// Empty when the view has no term at this pose (not visible, or weight 0).
+// Linearises view `v` at `linearisation_pose` for one step: renders its silhouette and builds
+// the dense template and/or the correspondence lines (options.energy) with their cost
+// functions; at level 0 it records their sizes in `view_summary`. Empty when the view has no
+// term at this pose (not visible, or weight 0). Reads only its own view: the views of a step
+// are linearised concurrently (Solve), and their terms added to the problem in view order
+// (AddViewTerms), so the result does not depend on the scheduling.
 std::optional<ViewTemplate> LineariseView(const RayCaster& caster,
                                           const FrameProblemOptions& options, const FrameView& view,
                                           int v, int level, const LevelOptions& level_options,
                                           const Eigen::Isometry3d& linearisation_pose,
-                                          double* parameters, ceres::Problem* problem,
                                           FrameViewSummary* view_summary) {
   if (view.weight == 0.0) return std::nullopt;
   // The template reads the render's model points on its stride only.
@@ -346,8 +348,6 @@ std::optional<ViewTemplate> LineariseView(const RayCaster& caster,
       const int pixel_count = static_cast<int>(t.region_template->pixels.size());
       t.energy = std::make_unique<RegionCostFunction>(*view.camera, view.cam_from_rig,
                                                       t.region_template, 0, pixel_count, t.cost);
-      AddRegionResidualBlocks(*view.camera, view.cam_from_rig, t.region_template, t.cost,
-                              parameters, problem);
       if (level == 0) view_summary->pixels = pixel_count;
     }
   }
@@ -361,14 +361,25 @@ std::optional<ViewTemplate> LineariseView(const RayCaster& caster,
       t.line_weight = view.weight * level_options.lines.weight;
       t.line_energy = std::make_unique<CorrespondenceLineCostFunction>(
           *view.camera, view.cam_from_rig, t.lines, t.line_weight);
-      problem->AddResidualBlock(new CorrespondenceLineCostFunction(*view.camera, view.cam_from_rig,
-                                                                   t.lines, t.line_weight),
-                                nullptr, parameters);
       if (level == 0) view_summary->lines = static_cast<int>(t.lines->lines.size());
     }
   }
   if (t.energy == nullptr && t.line_energy == nullptr) return std::nullopt;
   return t;
+}
+
+// Adds the residual blocks of a linearised view on `parameters` to `problem`.
+void AddViewTerms(const ViewTemplate& t, const FrameView& view, double* parameters,
+                  ceres::Problem* problem) {
+  if (t.region_template != nullptr) {
+    AddRegionResidualBlocks(*view.camera, view.cam_from_rig, t.region_template, t.cost, parameters,
+                            problem);
+  }
+  if (t.lines != nullptr) {
+    problem->AddResidualBlock(
+        new CorrespondenceLineCostFunction(*view.camera, view.cam_from_rig, t.lines, t.line_weight),
+        nullptr, parameters);
+  }
 }
 
 // The energy of every view and their total at `parameters` (the end of a round).
@@ -440,13 +451,17 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
                                              : fmt::format("round {}", step.round + 1);
     const LevelOptions level_options = OptionsAtLevel(options_, step.level);
     const Eigen::Isometry3d linearisation_pose = FromPoseParameters(x.data());
+    std::vector<std::optional<ViewTemplate>> linearised(views.size());
+    tbb::parallel_for(size_t{0}, views.size(), [&](size_t v) {
+      linearised[v] = LineariseView(caster_, options_, views[v], static_cast<int>(v), step.level,
+                                    level_options, linearisation_pose, &summary.views[v]);
+    });
     std::vector<ViewTemplate> templates;
     ceres::Problem problem;
     for (size_t v = 0; v < views.size(); ++v) {
-      std::optional<ViewTemplate> t =
-          LineariseView(caster_, options_, views[v], static_cast<int>(v), step.level, level_options,
-                        linearisation_pose, x.data(), &problem, &summary.views[v]);
-      if (t.has_value()) templates.push_back(std::move(*t));
+      if (!linearised[v].has_value()) continue;
+      AddViewTerms(*linearised[v], views[v], x.data(), &problem);
+      templates.push_back(std::move(*linearised[v]));
     }
     if (templates.empty()) {
       return fail(FrameTermination::kNotVisible, where + ": the object is outside every view");
@@ -518,12 +533,11 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
   constexpr int kPointStridePx = 64;
   for (int round = 0; round < edge.rounds; ++round) {
     const Eigen::Isometry3d linearisation_pose = FromPoseParameters(parameters);
-    ceres::Problem problem;
-    std::vector<std::pair<int, std::shared_ptr<const CorrespondenceLines>>> measured;
-    int total_lines = 0;
-    for (size_t v = 0; v < views.size(); ++v) {
+    // The views' lines are measured concurrently, then added in view order.
+    std::vector<std::shared_ptr<const CorrespondenceLines>> view_lines(views.size());
+    tbb::parallel_for(size_t{0}, views.size(), [&](size_t v) {
       const FrameView& view = views[v];
-      if (view.weight == 0.0) continue;
+      if (view.weight == 0.0) return;
       const Silhouette silhouette = RenderSilhouette(
           caster_, *view.camera, view.cam_from_rig * linearisation_pose * objcentre_from_template,
           options_.region.contour, kPointStridePx);
@@ -531,15 +545,22 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
           BuildEdgeLines(caster_, *view.camera, view.cam_from_rig, linearisation_pose, *view.image,
                          silhouette, edge.lines);
       BCOT_CHECK(lines.ok());
-      if (lines->lines.empty()) continue;
-      total_lines += static_cast<int>(lines->lines.size());
-      auto shared = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
+      view_lines[v] = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
+    });
+    ceres::Problem problem;
+    std::vector<std::pair<int, std::shared_ptr<const CorrespondenceLines>>> measured;
+    int total_lines = 0;
+    for (size_t v = 0; v < views.size(); ++v) {
+      const FrameView& view = views[v];
+      if (view_lines[v] == nullptr || view_lines[v]->lines.empty()) continue;
+      total_lines += static_cast<int>(view_lines[v]->lines.size());
+      const std::shared_ptr<const CorrespondenceLines>& shared = view_lines[v];
       for (int i = 0; i < static_cast<int>(shared->lines.size()); ++i) {
         problem.AddResidualBlock(new CorrespondenceLineCostFunction(*view.camera, view.cam_from_rig,
                                                                     shared, view.weight, i, 1),
                                  EdgeLoss(edge), parameters);
       }
-      measured.emplace_back(static_cast<int>(v), std::move(shared));
+      measured.emplace_back(static_cast<int>(v), shared);
     }
     if (total_lines < edge.min_lines) return false;
     problem.SetManifold(parameters, new Se3Manifold());

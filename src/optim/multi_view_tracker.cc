@@ -1,6 +1,7 @@
 #include "bcot/optim/multi_view_tracker.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <string>
@@ -115,7 +116,8 @@ Status MultiViewTracker::CheckImages(const std::vector<cv::Mat3b>& images) const
 void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
                                    const Eigen::Isometry3d& rig_from_objcentre, bool fresh) {
   const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
-  for (size_t v = 0; v < views_.size(); ++v) {
+  // Each view updates only its own models: the views are learned concurrently.
+  tbb::parallel_for(size_t{0}, views_.size(), [&](size_t v) {
     if (fresh) ResetColorModels(v);
     const Eigen::Isometry3d cam_from_template =
         views_[v].cam_from_rig * rig_from_objcentre * objcentre_from_template;
@@ -128,7 +130,7 @@ void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
                      : RenderSilhouetteMask(caster_, views_[v].camera, cam_from_template);
     color_models_[v]->Update(images[v], silhouette);
     if (refine_color_models_[v] != nullptr) refine_color_models_[v]->Update(images[v], silhouette);
-  }
+  });
 }
 
 std::vector<FrameView> MultiViewTracker::FrameViews(const std::vector<cv::Mat3b>& images,

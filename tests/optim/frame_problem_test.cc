@@ -2,6 +2,9 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <memory>
 
 #include "region_test_scene.h"
 #include "test_util.h"
@@ -44,24 +47,40 @@ class FrameProblemTest : public test::BunnyCasterTest {
                                           cam_from_rig * scene.rig_from_objcentre *
                                               mesh_->objcentre_from_template()));
   }
+
+  // The scene's two views rendered at the truth with noise seed `seed`, and a global colour
+  // model per view, learned there when `learned` says so (else left empty).
+  struct SceneViews {
+    test::BinocularScene scene;
+    std::vector<cv::Mat3b> images;
+    GlobalColorModel model0{ColorModelOptions()};
+    GlobalColorModel model1{ColorModelOptions()};
+    std::vector<FrameView> Views(double weight0 = 1.0, double weight1 = 1.0) const {
+      return {{&scene.camera0, scene.cam0_from_rig, &images[0], &model0, weight0},
+              {&scene.camera1, scene.cam1_from_rig, &images[1], &model1, weight1}};
+    }
+  };
+  static std::unique_ptr<SceneViews> RenderScene(uint64_t seed, bool learn0 = true,
+                                                 bool learn1 = true) {
+    auto views = std::make_unique<SceneViews>();
+    const test::BinocularScene& scene = views->scene;
+    views->images = test::RenderViews(*caster_, scene, scene.rig_from_objcentre, seed);
+    if (learn0)
+      LearnAtTruth(scene, scene.camera0, scene.cam0_from_rig, views->images[0], &views->model0);
+    if (learn1)
+      LearnAtTruth(scene, scene.camera1, scene.cam1_from_rig, views->images[1], &views->model1);
+    return views;
+  }
 };
 
 // Starting at the truth with colour models learned there, the solve stays within the energy's
 // own bias (pixel sampling, noise) of it and lowers the energy.
 TEST_F(FrameProblemTest, StartingAtTheTruthStaysThere) {
-  const test::BinocularScene scene;
-  const std::vector<cv::Mat3b> images =
-      test::RenderViews(*caster_, scene, scene.rig_from_objcentre, 41);
-  GlobalColorModel model0{ColorModelOptions()};
-  GlobalColorModel model1{ColorModelOptions()};
-  LearnAtTruth(scene, scene.camera0, scene.cam0_from_rig, images[0], &model0);
-  LearnAtTruth(scene, scene.camera1, scene.cam1_from_rig, images[1], &model1);
+  const std::unique_ptr<SceneViews> views = RenderScene(41);
+  const test::BinocularScene& scene = views->scene;
   const FrameProblem problem(*caster_, FrameProblemOptions());
   Eigen::Isometry3d pose = scene.rig_from_objcentre;
-  const FrameSummary summary =
-      problem.Solve({{&scene.camera0, scene.cam0_from_rig, &images[0], &model0, 1.0},
-                     {&scene.camera1, scene.cam1_from_rig, &images[1], &model1, 1.0}},
-                    &pose);
+  const FrameSummary summary = problem.Solve(views->Views(), &pose);
   ASSERT_TRUE(summary.usable()) << summary.message;
   EXPECT_GE(summary.rounds, 1);
   EXPECT_GT(summary.iterations, 0);
@@ -71,6 +90,43 @@ TEST_F(FrameProblemTest, StartingAtTheTruthStaysThere) {
   EXPECT_GT(summary.views[1].energy, 0.0);
   EXPECT_NEAR(summary.final_energy, summary.views[0].energy + summary.views[1].energy,
               1e-9 * summary.final_energy);
+}
+
+// The views of a round (templates, edge lines) are linearised concurrently and added to the
+// problem in view order, so the threads available change nothing, bit for bit.
+TEST_F(FrameProblemTest, ViewsSolvedConcurrentlyGiveTheOneThreadResult) {
+  const std::unique_ptr<SceneViews> views = RenderScene(43);
+  const test::BinocularScene& scene = views->scene;
+  FrameProblemOptions options;
+  ASSERT_TRUE(options.edge.enabled);  // the edge stage's views run concurrently too
+  const FrameProblem problem(*caster_, options);
+  const Eigen::Isometry3d start =
+      scene.rig_from_objcentre *
+      Eigen::Isometry3d(Eigen::Translation3d(1.5, -1.0, 2.0) *
+                        Eigen::AngleAxisd(0.03, Eigen::Vector3d(1, 2, 3).normalized()));
+  auto solve = [&](int threads, Eigen::Isometry3d* pose) {
+    *pose = start;
+    FrameSummary summary;
+    tbb::task_arena arena(threads);
+    arena.execute([&] { summary = problem.Solve(views->Views(), pose); });
+    return summary;
+  };
+  Eigen::Isometry3d one_thread, two_threads;
+  const FrameSummary one = solve(1, &one_thread);
+  const FrameSummary two = solve(2, &two_threads);
+  ASSERT_TRUE(one.usable()) << one.message;
+  ASSERT_TRUE(two.usable()) << two.message;
+  EXPECT_TRUE(one_thread.matrix() == two_threads.matrix()) << one_thread.matrix() << "\n"
+                                                           << two_threads.matrix();
+  EXPECT_EQ(one.final_energy, two.final_energy);
+  EXPECT_EQ(one.iterations, two.iterations);
+  ASSERT_EQ(one.views.size(), two.views.size());
+  for (size_t v = 0; v < one.views.size(); ++v) {
+    EXPECT_EQ(one.views[v].pixels, two.views[v].pixels);
+    EXPECT_GT(one.views[v].edge_lines, 0);
+    EXPECT_EQ(one.views[v].edge_lines, two.views[v].edge_lines);
+  }
+  EXPECT_THAT(one_thread, test::PoseNear(scene.rig_from_objcentre, 0.1, 0.1));
 }
 
 TEST_F(FrameProblemTest, ObjectOutsideEveryViewIsNotVisibleAndLeavesThePose) {
@@ -90,20 +146,12 @@ TEST_F(FrameProblemTest, ObjectOutsideEveryViewIsNotVisibleAndLeavesThePose) {
 }
 
 TEST_F(FrameProblemTest, ZeroWeightViewContributesNothing) {
-  const test::BinocularScene scene;
-  const std::vector<cv::Mat3b> images =
-      test::RenderViews(*caster_, scene, scene.rig_from_objcentre, 31);
-  GlobalColorModel model0{ColorModelOptions()};
-  GlobalColorModel model1{ColorModelOptions()};
-  LearnAtTruth(scene, scene.camera0, scene.cam0_from_rig, images[0], &model0);
+  const std::unique_ptr<SceneViews> views = RenderScene(31, true, /*learn1=*/false);
   FrameProblemOptions options;
   options.rounds = 1;
   const FrameProblem problem(*caster_, options);
-  Eigen::Isometry3d pose = scene.rig_from_objcentre;
-  const FrameSummary summary =
-      problem.Solve({{&scene.camera0, scene.cam0_from_rig, &images[0], &model0, 1.0},
-                     {&scene.camera1, scene.cam1_from_rig, &images[1], &model1, 0.0}},
-                    &pose);
+  Eigen::Isometry3d pose = views->scene.rig_from_objcentre;
+  const FrameSummary summary = problem.Solve(views->Views(1.0, 0.0), &pose);
   ASSERT_TRUE(summary.usable()) << summary.message;
   EXPECT_GT(summary.views[0].pixels, 0);
   EXPECT_EQ(summary.views[1].pixels, 0);
