@@ -26,7 +26,9 @@
 // happened; the pose is only written when the solve produced a finite energy.
 //
 // Thread safety: Solve is const; one FrameProblem may serve several threads as long as each
-// passes its own views and pose.
+// passes its own views and pose. Within a solve the views are linearised (and their edge lines
+// measured) concurrently on the calling TBB arena; their terms enter the problem in view order,
+// so the result does not depend on the number of threads.
 #pragma once
 
 #include <Eigen/Geometry>
