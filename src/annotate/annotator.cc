@@ -150,6 +150,23 @@ StatusOr<std::vector<TrackedView>> SelectViews(const Rig& rig, const ViewSelecti
   return views;
 }
 
+// The images of `frame` from the selected cameras (SelectViews), decoded concurrently; the
+// first failure in view order is reported.
+StatusOr<std::vector<cv::Mat3b>> ReadFrameImages(const Sequence& sequence,
+                                                 const std::vector<int>& rig_indices,
+                                                 const std::vector<TrackedView>& views, int frame) {
+  std::vector<StatusOr<cv::Mat3b>> read(rig_indices.size(), Status::Internal("not read"));
+  tbb::parallel_for(size_t{0}, rig_indices.size(), [&](size_t v) {
+    read[v] = ReadCameraImage(sequence.image_paths[rig_indices[v]][frame], views[v].camera);
+  });
+  std::vector<cv::Mat3b> images;
+  for (StatusOr<cv::Mat3b>& image : read) {
+    if (!image.ok()) return image.status();
+    images.push_back(std::move(image).value());
+  }
+  return images;
+}
+
 // What the tracker decoded the edges with, for image_response.yaml.
 ImageResponseRecord ImageResponseRecordOf(const MultiViewTracker& tracker) {
   ImageResponseRecord record;
@@ -252,13 +269,8 @@ StatusOr<RefinedFrame> RefineFrame(const Sequence& sequence, const RayCaster& ca
   std::vector<int> rig_indices;
   BCOT_ASSIGN_OR_RETURN(std::vector<TrackedView> views,
                         SelectViews(sequence.rig, options.views, &rig_indices));
-  std::vector<cv::Mat3b> images;
-  for (size_t v = 0; v < rig_indices.size(); ++v) {
-    BCOT_ASSIGN_OR_RETURN(
-        cv::Mat3b image,
-        ReadCameraImage(sequence.image_paths[rig_indices[v]][frame], views[v].camera));
-    images.push_back(image);
-  }
+  BCOT_ASSIGN_OR_RETURN(std::vector<cv::Mat3b> images,
+                        ReadFrameImages(sequence, rig_indices, views, frame));
   BCOT_ASSIGN_OR_RETURN(std::unique_ptr<MultiViewTracker> tracker,
                         MultiViewTracker::Create(caster, std::move(views), options.tracker));
   const Eigen::Isometry3d objcentre_from_template = caster.mesh().objcentre_from_template();
@@ -334,18 +346,8 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
   }
   const bool keep_templates = window || observer;
 
-  // The views' images are decoded concurrently; the first failure in view order is reported.
-  const auto read_images = [&](int frame) -> StatusOr<std::vector<cv::Mat3b>> {
-    std::vector<StatusOr<cv::Mat3b>> read(rig_indices.size(), Status::Internal("not read"));
-    tbb::parallel_for(size_t{0}, rig_indices.size(), [&](size_t v) {
-      read[v] = ReadCameraImage(sequence.image_paths[rig_indices[v]][frame], (*views)[v].camera);
-    });
-    std::vector<cv::Mat3b> images;
-    for (StatusOr<cv::Mat3b>& image : read) {
-      if (!image.ok()) return image.status();
-      images.push_back(std::move(image).value());
-    }
-    return images;
+  const auto read_images = [&](int frame) {
+    return ReadFrameImages(sequence, rig_indices, *views, frame);
   };
   // One solved frame before it is recorded (backward segments are recorded in frame order).
   struct Solved {
