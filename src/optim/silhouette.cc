@@ -22,15 +22,15 @@ Status CheckSilhouetteInputs(const Camera& camera, const cv::Mat3b& image,
 
 namespace {
 
-// The silhouette's mask and render; `points`: with point_in_object on the `point_stride_px`
-// grid (else occlusion rays only).
+// The silhouette's mask and render over the projected bounding box grown by `margin_px`;
+// `points`: with point_in_object on the `point_stride_px` grid (else occlusion rays only).
 Silhouette RenderMask(const RayCaster& caster, const Camera& camera,
-                      const Eigen::Isometry3d& cam_from_template, bool points,
+                      const Eigen::Isometry3d& cam_from_template, int margin_px, bool points,
                       int point_stride_px) {
   Silhouette silhouette;
   silhouette.mask = cv::Mat1b::zeros(camera.height, camera.width);
   RenderOptions render_options;
-  render_options.margin_px = 2;
+  render_options.margin_px = margin_px;
   render_options.depth = false;
   render_options.normal_in_cam = false;
   render_options.point_in_object = points;
@@ -50,23 +50,27 @@ Silhouette RenderMask(const RayCaster& caster, const Camera& camera,
 
 Silhouette RenderSilhouetteMask(const RayCaster& caster, const Camera& camera,
                                 const Eigen::Isometry3d& cam_from_template) {
-  return RenderMask(caster, camera, cam_from_template, /*points=*/false, 1);
+  return RenderMask(caster, camera, cam_from_template, /*margin_px=*/2, /*points=*/false, 1);
 }
 
 Silhouette RenderSilhouetteContour(const RayCaster& caster, const Camera& camera,
                                    const Eigen::Isometry3d& cam_from_template,
                                    const ContourOptions& contour_options) {
-  Silhouette silhouette = RenderMask(caster, camera, cam_from_template, /*points=*/false, 1);
-  silhouette.contour = caster.ExtractContour(camera, cam_from_template, contour_options);
+  // Rendered over the contour's box, so that the contour reads its coarse grid from the mask.
+  Silhouette silhouette = RenderMask(caster, camera, cam_from_template, contour_options.margin_px,
+                                     /*points=*/false, 1);
+  silhouette.contour =
+      caster.ExtractContour(camera, cam_from_template, contour_options, &silhouette.view);
   return silhouette;
 }
 
 Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
                             const Eigen::Isometry3d& cam_from_template,
                             const ContourOptions& contour_options, int point_stride_px) {
-  Silhouette silhouette =
-      RenderMask(caster, camera, cam_from_template, /*points=*/true, point_stride_px);
-  silhouette.contour = caster.ExtractContour(camera, cam_from_template, contour_options);
+  Silhouette silhouette = RenderMask(caster, camera, cam_from_template, contour_options.margin_px,
+                                     /*points=*/true, point_stride_px);
+  silhouette.contour =
+      caster.ExtractContour(camera, cam_from_template, contour_options, &silhouette.view);
   return silhouette;
 }
 

@@ -241,7 +241,8 @@ void RefineNormals(std::vector<Refined>* samples, double spacing) {
 
 std::vector<ContourPoint> RayCaster::ExtractContour(const Camera& camera,
                                                     const Eigen::Isometry3d& cam_from_object,
-                                                    const ContourOptions& options) const {
+                                                    const ContourOptions& options,
+                                                    const RenderedView* rendered) const {
   BCOT_CHECK(options.Validate().ok());
   const cv::Rect roi = ProjectedBoundingBox(camera, cam_from_object, options.margin_px);
   if (roi.empty()) return {};
@@ -257,9 +258,19 @@ std::vector<ContourPoint> RayCaster::ExtractContour(const Camera& camera,
   grid.cols = (roi.width - 1) / grid_step + 1;
   grid.rows = (roi.height - 1) / grid_step + 1;
   cv::Mat1b coarse = cv::Mat1b::zeros(grid.rows + 2, grid.cols + 2);
-  render_internal::TraceGrid(
-      impl_->scene, frame, camera, grid, /*occlusion_only=*/true,
-      [&](const render_internal::LaneHit& hit) { coarse(hit.row + 1, hit.col + 1) = 1; });
+  if (rendered != nullptr) {
+    BCOT_CHECK(rendered->samples_per_axis == 1 && rendered->roi == roi &&
+               rendered->mask.rows == roi.height && rendered->mask.cols == roi.width);
+    for (int r = 0; r < grid.rows; ++r) {
+      for (int c = 0; c < grid.cols; ++c) {
+        coarse(r + 1, c + 1) = rendered->mask(r * grid_step, c * grid_step) != 0 ? 1 : 0;
+      }
+    }
+  } else {
+    render_internal::TraceGrid(
+        impl_->scene, frame, camera, grid, /*occlusion_only=*/true,
+        [&](const render_internal::LaneHit& hit) { coarse(hit.row + 1, hit.col + 1) = 1; });
+  }
 
   std::vector<std::vector<cv::Point>> contours;
   std::vector<cv::Vec4i> hierarchy;

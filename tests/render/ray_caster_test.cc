@@ -798,6 +798,49 @@ TEST(ContourTest, TorusHoleNormalsPointIntoTheHole) {
   EXPECT_EQ(CheckContourBasics(caster, camera, cam_from_object, contour), 1.0);
 }
 
+// ExtractContour reading its coarse grid from a render's mask (RenderSilhouette's way) finds
+// the contour it traces itself, point for point: the grid's samples are that mask's pixel
+// centres, cast with the same rays. Also through distortion, at a point stride (the mask then
+// mixes occlusion and closest-hit rays) and for a hole.
+TEST(ContourTest, CoarseGridFromARenderedMaskGivesTheSameContour) {
+  const Mesh spool = SpoolMesh();
+  const Mesh torus = MakeTorus(40.0, 12.0, 160, 48);
+  int compared = 0;
+  for (const Mesh* mesh : {&spool, &torus}) {
+    const RayCaster caster(*mesh);
+    for (const Camera& camera : {TestCamera(), DistortedCamera()}) {
+      for (const int stride : {1, 2, 64}) {
+        const Eigen::Isometry3d cam_from_object = CamFromObject(
+            {25, -15, 430},
+            Eigen::AngleAxisd(0.3 + 0.2 * stride, Eigen::Vector3d(1, 0.5, 0.2).normalized()));
+        ContourOptions options;
+        options.sample_spacing_px = 0.5;
+        RenderOptions render_options;
+        render_options.margin_px = options.margin_px;
+        render_options.depth = render_options.normal_in_cam = render_options.triangle_id = false;
+        render_options.point_in_object = stride > 1;
+        render_options.point_stride_px = stride;
+        const RenderedView view = caster.Render(camera, cam_from_object, render_options);
+        const std::vector<ContourPoint> traced =
+            caster.ExtractContour(camera, cam_from_object, options);
+        const std::vector<ContourPoint> from_mask =
+            caster.ExtractContour(camera, cam_from_object, options, &view);
+        ASSERT_GT(traced.size(), 500u);
+        ASSERT_EQ(from_mask.size(), traced.size()) << camera.name << " stride " << stride;
+        for (size_t i = 0; i < traced.size(); ++i) {
+          EXPECT_EQ(from_mask[i].pixel, traced[i].pixel);
+          EXPECT_EQ(from_mask[i].normal, traced[i].normal);
+          EXPECT_EQ(from_mask[i].point_in_object, traced[i].point_in_object);
+          EXPECT_EQ(from_mask[i].contour_id, traced[i].contour_id);
+          EXPECT_EQ(from_mask[i].is_hole, traced[i].is_hole);
+        }
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 12);
+}
+
 // The spool is a CAD part with sharp creases: its silhouette has corners, so the test is
 // against the mesh's own exact silhouette by ray casting, not an analytic shape.
 TEST(ContourTest, SpoolPointsOnExactMeshSilhouette) {

@@ -130,9 +130,15 @@ class RayCaster {
   // precision_px → the normal re-estimated from the refined neighbours. Samples without a
   // bracket (parts thinner than the step, clipped image borders) and samples outside the
   // image are dropped. Points are ordered along each contour. `options` must be valid.
+  // `rendered` (optional): a Render at the same camera and pose with samples_per_axis 1 and
+  // margin_px = options.margin_px (so the same roi; CHECKed); the coarse grid's samples are
+  // then read from its mask instead of being traced again. They are pixel centres of that mask
+  // and, without distortion, the same float rays (a step of 2^k px scales the row increment
+  // exactly), so the contour is the same.
   std::vector<ContourPoint> ExtractContour(const Camera& camera,
                                            const Eigen::Isometry3d& cam_from_object,
-                                           const ContourOptions& options = {}) const;
+                                           const ContourOptions& options = {},
+                                           const RenderedView* rendered = nullptr) const;
 
   // Casts one ray through `pixel` (distortion honoured); returns the closest hit in O_t.
   std::optional<Eigen::Vector3d> Intersect(const Camera& camera,
