@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -46,11 +47,19 @@ Status CheckCompleteImageFile(const std::string& path, const std::vector<unsigne
 }  // namespace
 
 StatusOr<cv::Mat3b> ReadColorImage(const std::string& path) {
+  // One read of the whole file (an istreambuf_iterator copy goes byte by byte). file_size
+  // fails for a missing path and for anything but a regular file (a directory).
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  if (error)
+    return Status::InvalidInput(path + ": cannot read the image (" + error.message() + ")");
   std::ifstream file(path, std::ios::binary);
   if (!file) return Status::InvalidInput(path + ": cannot read the image");
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
-                                         std::istreambuf_iterator<char>());
-  if (!file.good() && !file.eof()) return Status::IoError(path + ": read error");
+  std::vector<unsigned char> bytes(static_cast<size_t>(size));
+  if (!file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size))) {
+    return Status::IoError(path + ": read error");
+  }
+  if (bytes.empty()) return Status::InvalidInput(path + ": cannot read the image (empty file)");
   BCOT_RETURN_IF_ERROR(CheckCompleteImageFile(path, bytes));
   const cv::Mat image = cv::imdecode(bytes, cv::IMREAD_COLOR);
   if (image.empty()) return Status::InvalidInput(path + ": cannot read the image");

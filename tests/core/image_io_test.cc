@@ -61,6 +61,15 @@ TEST(ImageIoTest, TruncatedFilesAreErrorsNamingTheFile) {
   EXPECT_THAT(ReadColorImage(dir.File("text.png")).status().message(), HasSubstr("text.png"));
   EXPECT_THAT(ReadColorImage(dir.File("missing.png")).status().message(),
               HasSubstr("missing.png: cannot read"));
+  // An empty file and a directory are errors naming the path, not a decoder exception.
+  test::WriteText(dir.File("empty.bmp"), "");
+  const StatusOr<cv::Mat3b> empty = ReadColorImage(dir.File("empty.bmp"));
+  EXPECT_EQ(empty.status().code(), StatusCode::kInvalidInput);
+  EXPECT_THAT(empty.status().message(), HasSubstr("empty.bmp: cannot read the image"));
+  ASSERT_TRUE(std::filesystem::create_directory(dir.File("folder.jpg")));
+  const StatusOr<cv::Mat3b> folder = ReadColorImage(dir.File("folder.jpg"));
+  EXPECT_FALSE(folder.ok());
+  EXPECT_THAT(folder.status().message(), HasSubstr("folder.jpg"));
 }
 
 }  // namespace
