@@ -19,7 +19,7 @@ done
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libceres-dev libsuitesparse-dev
-  libopencv-dev
+  libopencv-dev libjpeg-dev   # libjpeg-dev: libjpeg-turbo, for the direct JPEG decode
   libassimp-dev libembree-dev
   libaravis-dev libusb-1.0-0-dev aravis-tools aravis-tools-cli
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libfmt-dev libspdlog-dev libtbb-dev

@@ -1,10 +1,13 @@
 #include "bcot/core/image_io.h"
 
 #include <fmt/format.h>
+#include <jpeglib.h>
 
 #include <algorithm>
 #include <cctype>
+#include <csetjmp>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -44,6 +47,64 @@ Status CheckCompleteImageFile(const std::string& path, const std::vector<unsigne
   return Status::Ok();
 }
 
+// libjpeg reports a fatal error through error_exit, which must not return (its default exits
+// the process): jump back into DecodeJpegBgr.
+struct JpegErrorManager {
+  jpeg_error_mgr manager;
+  std::jmp_buf jump;
+};
+
+[[noreturn]] void JumpOnJpegError(j_common_ptr info) {
+  std::longjmp(reinterpret_cast<JpegErrorManager*>(info->err)->jump, 1);
+}
+
+// True when the APP1 markers libjpeg saved hold an Exif block (which may rotate the image).
+bool HasExif(const jpeg_decompress_struct& info) {
+  for (jpeg_saved_marker_ptr marker = info.marker_list; marker != nullptr; marker = marker->next) {
+    if (marker->marker == JPEG_APP0 + 1 && marker->data_length >= 6 &&
+        std::memcmp(marker->data, "Exif\0\0", 6) == 0) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// Decodes a JPEG straight into BGR rows (libjpeg-turbo's JCS_EXT_BGR output): the pixels of
+// cv::imdecode(IMREAD_COLOR) — the same library, the same default IDCT and upsampling — without
+// OpenCV's RGB-to-BGR pass, which costs as much again as the decode (960×768: 2.8 against 5.8
+// ms). False, leaving the decode to cv::imdecode, for what this does not treat as imdecode
+// does: a libjpeg error (a CMYK file, corrupt headers; imdecode then reports or handles it) and
+// an Exif block (imdecode turns the image by its orientation tag). Warnings about corrupt data
+// go to stderr as under imdecode. Only trivially destructible locals live across setjmp.
+bool DecodeJpegBgr(const std::vector<unsigned char>& bytes, cv::Mat3b* image) {
+  jpeg_decompress_struct info;
+  JpegErrorManager errors;
+  info.err = jpeg_std_error(&errors.manager);
+  errors.manager.error_exit = JumpOnJpegError;
+  if (setjmp(errors.jump) != 0) {
+    jpeg_destroy_decompress(&info);
+    return false;
+  }
+  jpeg_create_decompress(&info);
+  jpeg_mem_src(&info, bytes.data(), static_cast<unsigned long>(bytes.size()));
+  jpeg_save_markers(&info, JPEG_APP0 + 1, 0xFFFF);
+  jpeg_read_header(&info, TRUE);
+  if (HasExif(info)) {
+    jpeg_destroy_decompress(&info);
+    return false;
+  }
+  info.out_color_space = JCS_EXT_BGR;
+  jpeg_start_decompress(&info);
+  image->create(static_cast<int>(info.output_height), static_cast<int>(info.output_width));
+  while (info.output_scanline < info.output_height) {
+    JSAMPROW row = image->ptr(static_cast<int>(info.output_scanline));
+    jpeg_read_scanlines(&info, &row, 1);
+  }
+  jpeg_finish_decompress(&info);
+  jpeg_destroy_decompress(&info);
+  return true;
+}
+
 }  // namespace
 
 StatusOr<cv::Mat3b> ReadColorImage(const std::string& path) {
@@ -61,6 +122,10 @@ StatusOr<cv::Mat3b> ReadColorImage(const std::string& path) {
   }
   if (bytes.empty()) return Status::InvalidInput(path + ": cannot read the image (empty file)");
   BCOT_RETURN_IF_ERROR(CheckCompleteImageFile(path, bytes));
+  const bool is_jpeg =
+      bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+  cv::Mat3b jpeg;
+  if (is_jpeg && DecodeJpegBgr(bytes, &jpeg)) return jpeg;
   const cv::Mat image = cv::imdecode(bytes, cv::IMREAD_COLOR);
   if (image.empty()) return Status::InvalidInput(path + ": cannot read the image");
   return cv::Mat3b(image);

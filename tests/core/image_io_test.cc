@@ -5,7 +5,11 @@
 
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
 
+#include "bcot/core/file_util.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -39,6 +43,53 @@ TEST(ImageIoTest, ReadsCompleteImagesAndChecksTheCameraSize) {
     EXPECT_EQ(wrong.status().code(), StatusCode::kInvalidInput);
     EXPECT_THAT(wrong.status().message(), HasSubstr("image is 64x48, camera 'cam0'"));
   }
+}
+
+// JPEGs are decoded by libjpeg straight into BGR; the pixels must be OpenCV's own decode's for
+// the kinds a camera or a converter writes: baseline 4:2:0, optimised Huffman tables,
+// progressive, greyscale, a size that is no multiple of the MCU. A file with an Exif orientation is
+// left to OpenCV, which turns it; a CMYK-like failure of libjpeg falls back the same way (not built
+// here).
+TEST(ImageIoTest, JpegsDecodeToOpenCvsPixels) {
+  test::TempDir dir;
+  cv::Mat3b image = Gradient(157, 93);
+  cv::randu(image(cv::Rect(40, 20, 60, 40)), cv::Scalar::all(0), cv::Scalar::all(255));
+  cv::Mat1b grey;
+  cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  struct Case {
+    std::string name;
+    cv::Mat written;
+    std::vector<int> params;
+  };
+  const std::vector<Case> cases = {
+      {"default.jpg", image, {cv::IMWRITE_JPEG_QUALITY, 90}},
+      {"optimized.jpg", image, {cv::IMWRITE_JPEG_QUALITY, 100, cv::IMWRITE_JPEG_OPTIMIZE, 1}},
+      {"progressive.jpeg", image, {cv::IMWRITE_JPEG_PROGRESSIVE, 1}},
+      {"grey.jpg", grey, {}},
+  };
+  for (const Case& c : cases) {
+    ASSERT_TRUE(cv::imwrite(dir.File(c.name), c.written, c.params)) << c.name;
+    const StatusOr<cv::Mat3b> read = ReadColorImage(dir.File(c.name));
+    ASSERT_TRUE(read.ok()) << read.status().message();
+    const cv::Mat expected = cv::imread(dir.File(c.name), cv::IMREAD_COLOR);
+    ASSERT_EQ(read->size(), expected.size()) << c.name;
+    EXPECT_EQ(cv::norm(*read, expected, cv::NORM_INF), 0.0) << c.name;
+  }
+  // An APP1 Exif block with orientation 6 (turned 90° clockwise) after the SOI marker.
+  const StatusOr<std::string> plain = ReadTextFile(dir.File("default.jpg"));
+  ASSERT_TRUE(plain.ok());
+  const std::string exif(
+      "\xFF\xE1\x00\x22"
+      "Exif\0\0II*\0\x08\0\0\0"
+      "\x01\0\x12\x01\x03\0\x01\0\0\0\x06\0\0\0\0\0\0\0",
+      4 + 32);
+  test::WriteText(dir.File("turned.jpg"), plain->substr(0, 2) + exif + plain->substr(2));
+  const StatusOr<cv::Mat3b> turned = ReadColorImage(dir.File("turned.jpg"));
+  ASSERT_TRUE(turned.ok()) << turned.status().message();
+  const cv::Mat expected = cv::imread(dir.File("turned.jpg"), cv::IMREAD_COLOR);
+  ASSERT_EQ(expected.size(), cv::Size(93, 157));  // OpenCV applied the orientation
+  ASSERT_EQ(turned->size(), expected.size());
+  EXPECT_EQ(cv::norm(*turned, expected, cv::NORM_INF), 0.0);
 }
 
 // A truncated JPEG decodes with grey rows and a truncated PNG partly: both must be errors.
