@@ -111,7 +111,7 @@ double ColorHistograms::ForegroundPosterior(int bin) const {
 // ---------------------------------------------------------------------------------------------
 // BoundaryDistances
 
-namespace {
+namespace internal {
 
 // Distance of each pixel of `box()` to the other side of the silhouette boundary: of an inside
 // pixel to the nearest outside one, of an outside pixel to the nearest inside one. box() is the
@@ -146,7 +146,7 @@ class BoundaryDistances {
   cv::Mat1f to_inside_;
 };
 
-}  // namespace
+}  // namespace internal
 
 // ---------------------------------------------------------------------------------------------
 // GlobalColorModel
@@ -159,8 +159,16 @@ GlobalColorModel::GlobalColorModel(const ColorModelOptions& options)
 void GlobalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouette) {
   BCOT_CHECK(image.size() == silhouette.mask.size());
   if (cv::countNonZero(silhouette.mask) == 0) return;
+  Update(image, silhouette,
+         internal::BoundaryDistances(silhouette.mask, options_.background_band_px + 1));
+}
+
+// A box grown further than band + 1 adds only pixels farther than `band` from the silhouette,
+// which are not sampled, and leaves the others' distances and their row-major order as they
+// are: the histograms are the same.
+void GlobalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouette,
+                              const internal::BoundaryDistances& distances) {
   const int band = options_.background_band_px;
-  const BoundaryDistances distances(silhouette.mask, band + 1);
   const cv::Rect& box = distances.box();
   const float margin = static_cast<float>(options_.sample_margin_px);
   std::vector<int> foreground_bins;
@@ -206,8 +214,10 @@ LocalColorModel::LocalColorModel(const ColorModelOptions& options, double object
 
 void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouette) {
   BCOT_CHECK(image.size() == silhouette.mask.size());
-  fallback_.Update(image, silhouette);
-  active_.clear();
+  if (cv::countNonZero(silhouette.mask) == 0) {
+    active_.clear();
+    return;
+  }
   std::vector<bool> is_active(regions_.size(), false);
   const double radius = options_.local_region_radius_px;
   const int reach = static_cast<int>(std::ceil(radius));
@@ -215,7 +225,11 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
   // Pixels within the sample margin of the silhouette boundary are mixed (anti-aliased,
   // blurred) and not sampled, as in the global model. Every sampled pixel lies within `reach`
   // of a contour point, so within reach + 2 px of the mask's bounding box (the box's side).
-  const BoundaryDistances distances(silhouette.mask, reach + 2);
+  // One pair of distance transforms serves the fallback's update and this one.
+  const internal::BoundaryDistances distances(silhouette.mask,
+                                              std::max(reach + 2, options_.background_band_px + 1));
+  fallback_.Update(image, silhouette, distances);
+  active_.clear();
   const cv::Rect& box = distances.box();
   const float margin = static_cast<float>(options_.sample_margin_px);
   double arc_since_centre = 0.0;

@@ -132,6 +132,10 @@ class ColorModel {
   virtual bool UsesContour() const = 0;
 };
 
+namespace internal {
+class BoundaryDistances;  // color_model.cc
+}  // namespace internal
+
 class GlobalColorModel final : public ColorModel {
  public:
   // `options` must be valid (CHECKed).
@@ -144,6 +148,12 @@ class GlobalColorModel final : public ColorModel {
   const ColorHistograms& histograms() const { return histograms_; }
 
  private:
+  friend class LocalColorModel;
+  // Update from boundary distances of `silhouette`'s (non-empty) mask the caller computed on a
+  // box grown by at least background_band_px + 1 (LocalColorModel shares its own).
+  void Update(const cv::Mat3b& image, const Silhouette& silhouette,
+              const internal::BoundaryDistances& distances);
+
   ColorModelOptions options_;
   ColorHistograms histograms_;
 };
