@@ -31,10 +31,9 @@ Silhouette RenderMask(const RayCaster& caster, const Camera& camera,
   silhouette.mask = cv::Mat1b::zeros(camera.height, camera.width);
   RenderOptions render_options;
   render_options.margin_px = margin_px;
-  render_options.depth = false;
-  render_options.normal_in_cam = false;
+  // The mask, and the model points when asked for: no depth, normals or triangle ids.
+  render_options.depth = render_options.normal_in_cam = render_options.triangle_id = false;
   render_options.point_in_object = points;
-  render_options.triangle_id = false;
   render_options.point_stride_px = point_stride_px;
   silhouette.view = caster.Render(camera, cam_from_template, render_options);
   const cv::Rect image_rect(0, 0, camera.width, camera.height);
