@@ -71,11 +71,12 @@ bool HasExif(const jpeg_decompress_struct& info) {
 
 // Decodes a JPEG straight into BGR rows (libjpeg-turbo's JCS_EXT_BGR output): the pixels of
 // cv::imdecode(IMREAD_COLOR) — the same library, the same default IDCT and upsampling — without
-// OpenCV's RGB-to-BGR pass, which costs as much again as the decode (960×768: 2.8 against 5.8
-// ms). False, leaving the decode to cv::imdecode, for what this does not treat as imdecode
-// does: a libjpeg error (a CMYK file, corrupt headers; imdecode then reports or handles it) and
-// an Exif block (imdecode turns the image by its orientation tag). Warnings about corrupt data
-// go to stderr as under imdecode. Only trivially destructible locals live across setjmp.
+// OpenCV's RGB-to-BGR pass, which costs as much again as the decode (scripts/bench_image_read.sh,
+// 960×768: 2.1 against 4.7 ms). False, leaving the decode to cv::imdecode, for what this does not
+// treat as imdecode does: a libjpeg error (a CMYK file, corrupt headers; imdecode then reports or
+// handles it) and an Exif block (imdecode turns the image by its orientation tag). Warnings about
+// corrupt data go to stderr as under imdecode. Only trivially destructible locals live across
+// setjmp.
 bool DecodeJpegBgr(const std::vector<unsigned char>& bytes, cv::Mat3b* image) {
   jpeg_decompress_struct info;
   JpegErrorManager errors;
@@ -112,8 +113,9 @@ StatusOr<cv::Mat3b> ReadColorImage(const std::string& path) {
   // fails for a missing path and for anything but a regular file (a directory).
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
-  if (error)
+  if (error) {
     return Status::InvalidInput(path + ": cannot read the image (" + error.message() + ")");
+  }
   std::ifstream file(path, std::ios::binary);
   if (!file) return Status::InvalidInput(path + ": cannot read the image");
   std::vector<unsigned char> bytes(static_cast<size_t>(size));

@@ -132,9 +132,9 @@ class RayCaster {
   // image are dropped. Points are ordered along each contour. `options` must be valid.
   // `rendered` (optional): a Render at the same camera and pose with samples_per_axis 1 and
   // margin_px = options.margin_px (so the same roi; CHECKed); the coarse grid's samples are
-  // then read from its mask instead of being traced again. They are pixel centres of that mask
-  // and, without distortion, the same float rays (a step of 2^k px scales the row increment
-  // exactly), so the contour is the same.
+  // then read from its mask instead of being traced again. They are pixel centres of that mask;
+  // for a coarse step of 2^k px without distortion they are the very rays the contour would
+  // cast (scaling the row's direction increment by 2^k is exact), so the contour is the same.
   std::vector<ContourPoint> ExtractContour(const Camera& camera,
                                            const Eigen::Isometry3d& cam_from_object,
                                            const ContourOptions& options = {},
