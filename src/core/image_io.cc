@@ -6,13 +6,13 @@
 #include <algorithm>
 #include <cctype>
 #include <csetjmp>
-#include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
+
+#include "bcot/core/file_util.h"
 
 namespace bcot {
 namespace {
@@ -109,19 +109,14 @@ bool DecodeJpegBgr(const std::vector<unsigned char>& bytes, cv::Mat3b* image) {
 }  // namespace
 
 StatusOr<cv::Mat3b> ReadColorImage(const std::string& path) {
-  // One read of the whole file (an istreambuf_iterator copy goes byte by byte). file_size
-  // fails for a missing path and for anything but a regular file (a directory).
-  std::error_code error;
-  const std::uintmax_t size = std::filesystem::file_size(path, error);
-  if (error) {
-    return Status::InvalidInput(path + ": cannot read the image (" + error.message() + ")");
+  // The whole file in one read (ReadTextFile is byte-exact), then this function's error form.
+  const StatusOr<std::string> file = ReadTextFile(path);
+  if (!file.ok()) {
+    std::string reason = file.status().message();
+    if (reason.rfind(path + ": ", 0) == 0) reason.erase(0, path.size() + 2);
+    return Status::InvalidInput(path + ": cannot read the image (" + reason + ")");
   }
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return Status::InvalidInput(path + ": cannot read the image");
-  std::vector<unsigned char> bytes(static_cast<size_t>(size));
-  if (!file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size))) {
-    return Status::IoError(path + ": read error");
-  }
+  const std::vector<unsigned char> bytes(file->begin(), file->end());
   if (bytes.empty()) return Status::InvalidInput(path + ": cannot read the image (empty file)");
   BCOT_RETURN_IF_ERROR(CheckCompleteImageFile(path, bytes));
   const bool is_jpeg =

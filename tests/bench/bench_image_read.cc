@@ -7,13 +7,12 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
+#include "bcot/core/file_util.h"
 #include "bcot/core/image_io.h"
 
 namespace bcot {
@@ -61,9 +60,9 @@ void BM_OpenCvImread(benchmark::State& state) {
 BENCHMARK(BM_OpenCvImread)->Unit(benchmark::kMillisecond);
 
 void BM_OpenCvImdecode(benchmark::State& state) {
-  std::ifstream file(FramePath(), std::ios::binary);
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)),
-                                         std::istreambuf_iterator<char>());
+  const StatusOr<std::string> file = ReadTextFile(FramePath());
+  if (!file.ok()) std::abort();
+  const std::vector<unsigned char> bytes(file->begin(), file->end());
   for (auto _ : state) {
     cv::Mat image = cv::imdecode(bytes, cv::IMREAD_COLOR);
     benchmark::DoNotOptimize(image);
