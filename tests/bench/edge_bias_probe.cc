@@ -14,6 +14,8 @@
 //                        [--dump FILE]
 // --dump writes one line per measured edge line: camera, frame, bin, centre, normal, μ, σ, then
 // the linear RGB profile (window_px/step_px samples each side, R G B per sample).
+// --dump-fits writes one line per measured edge line: camera, frame, bin, then the profile fit's
+// μ, σ_μ (unfloored), blur width w (px) and step b (EdgeFit; FitEdgeAcross again on the line).
 // Prints per camera: lines measured / candidates, and per bin count, mean μ and its standard
 // error (px); then the quantiles of μ per bin over all cameras.
 #include <fmt/format.h>
@@ -92,6 +94,8 @@ int main(int argc, char** argv) {
   app.add_option("--set", overrides, "Override of the config (repeatable)");
   app.add_option("--frames", max_frames, "Only the first N frames (0 = all)");
   app.add_option("--dump", dump_path, "Write every measured line's profile to this file");
+  std::string fits_path;
+  app.add_option("--dump-fits", fits_path, "Write every measured line's profile fit to this file");
   int response_frames = 0;
   app.add_option("--response-frames", response_frames,
                  "Score the response candidates (EstimateImageResponse: polarity slope and spread, "
@@ -165,6 +169,8 @@ int main(int argc, char** argv) {
   std::array<Accumulator, 4> total{};
   std::FILE* dump = dump_path.empty() ? nullptr : std::fopen(dump_path.c_str(), "w");
   if (!dump_path.empty() && dump == nullptr) return Fail("cannot write " + dump_path);
+  std::FILE* fits = fits_path.empty() ? nullptr : std::fopen(fits_path.c_str(), "w");
+  if (!fits_path.empty() && fits == nullptr) return Fail("cannot write " + fits_path);
   const int half = static_cast<int>(std::floor(edge.window_px / edge.step_px + 1e-9));
   const LinearTable linear(edge.response);
   for (int v = 0; v < sequence->rig.size(); ++v) {
@@ -185,6 +191,13 @@ int main(int argc, char** argv) {
         ++measured;
         bins[BinOf(line.normal)].Add(line.mean_px);
         total[BinOf(line.normal)].Add(line.mean_px);
+        EdgeFit fit;
+        if (fits != nullptr && FitEdgeAcross(*image, linear, line.centre, line.normal, edge, &fit) ==
+                                   EdgeAcross::kFound) {
+          std::fprintf(fits, "%s %d %s %+.4f %.4f %.4f %+.5f\n", camera.camera.name.c_str(), f,
+                       kBins[BinOf(line.normal)], fit.mean_px, fit.sigma_px, fit.width_px,
+                       fit.step);
+        }
         if (dump == nullptr) continue;
         std::fprintf(dump, "%s %d %s %.3f %.3f %.4f %.4f %+.4f %.4f", camera.camera.name.c_str(), f,
                      kBins[BinOf(line.normal)], line.centre.x(), line.centre.y(), line.normal.x(),
@@ -207,6 +220,7 @@ int main(int argc, char** argv) {
     std::printf(" | %+8.3f\n", all.Mean());
   }
   if (dump != nullptr) std::fclose(dump);
+  if (fits != nullptr) std::fclose(fits);
   std::printf("%-6s %9s", "all", "");
   for (const Accumulator& bin : total) {
     std::printf(" | %-5s %5d %+8.3f %6.3f", "", bin.count, bin.Mean(), bin.StandardError());
