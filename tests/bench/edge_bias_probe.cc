@@ -11,7 +11,7 @@
 // a difference between opposite bins (a shift) or from all bins together (a scale, i.e. depth).
 //
 // Usage: edge_bias_probe --sequence DIR [--config FILE] [--set key=value]... [--frames N]
-//                        [--dump FILE]
+//                        [--dump FILE] [--dump-fits FILE]
 // --dump writes one line per measured edge line: camera, frame, bin, centre, normal, μ, σ, then
 // the linear RGB profile (window_px/step_px samples each side, R G B per sample).
 // --dump-fits writes one line per measured edge line: camera, frame, bin, then the profile fit's
@@ -192,8 +192,8 @@ int main(int argc, char** argv) {
         bins[BinOf(line.normal)].Add(line.mean_px);
         total[BinOf(line.normal)].Add(line.mean_px);
         EdgeFit fit;
-        if (fits != nullptr && FitEdgeAcross(*image, linear, line.centre, line.normal, edge, &fit) ==
-                                   EdgeAcross::kFound) {
+        if (fits != nullptr && FitEdgeAcross(*image, linear, line.centre, line.normal, edge,
+                                             &fit) == EdgeAcross::kFound) {
           std::fprintf(fits, "%s %d %s %+.4f %.4f %.4f %+.5f\n", camera.camera.name.c_str(), f,
                        kBins[BinOf(line.normal)], fit.mean_px, fit.sigma_px, fit.width_px,
                        fit.step);
