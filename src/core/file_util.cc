@@ -48,21 +48,23 @@ void SyncDirectory(const std::string& dir) {
 
 }  // namespace
 
-StatusOr<std::string> ReadTextFile(const std::string& path) {
+StatusOr<std::string> ReadFileContents(const std::string& path) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
-  if (!fs::exists(status)) return Status::NotFound(fmt::format("{}: file not found", path));
-  if (fs::is_directory(status)) {
-    return Status::IoError(fmt::format("{}: is a directory, expected a file", path));
-  }
+  if (!fs::exists(status)) return Status::NotFound("file not found");
+  if (fs::is_directory(status)) return Status::IoError("is a directory, expected a file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    return Status::IoError(fmt::format("{}: cannot open for reading: {}", path, ErrnoText(errno)));
-  }
+  if (!in) return Status::IoError(fmt::format("cannot open for reading: {}", ErrnoText(errno)));
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  if (in.bad()) return Status::IoError(fmt::format("{}: read failed", path));
+  if (in.bad()) return Status::IoError("read failed");
   return buffer.str();
+}
+
+StatusOr<std::string> ReadTextFile(const std::string& path) {
+  StatusOr<std::string> contents = ReadFileContents(path);
+  if (!contents.ok()) return contents.status().WithContext(path);
+  return contents;
 }
 
 Status CreateDirectories(const std::string& path) {

@@ -109,12 +109,9 @@ bool DecodeJpegBgr(const std::vector<unsigned char>& bytes, cv::Mat3b* image) {
 }  // namespace
 
 StatusOr<cv::Mat3b> ReadColorImage(const std::string& path) {
-  // The whole file in one read (ReadTextFile is byte-exact), then this function's error form.
-  const StatusOr<std::string> file = ReadTextFile(path);
+  const StatusOr<std::string> file = ReadFileContents(path);
   if (!file.ok()) {
-    std::string reason = file.status().message();
-    if (reason.rfind(path + ": ", 0) == 0) reason.erase(0, path.size() + 2);
-    return Status::InvalidInput(path + ": cannot read the image (" + reason + ")");
+    return Status::InvalidInput(path + ": cannot read the image (" + file.status().message() + ")");
   }
   const std::vector<unsigned char> bytes(file->begin(), file->end());
   if (bytes.empty()) return Status::InvalidInput(path + ": cannot read the image (empty file)");

@@ -11,7 +11,13 @@
 
 namespace bcot {
 
+// The whole file, byte for byte. Errors: "<path>: <reason>" (kNotFound for a missing file,
+// kIoError for a directory or a failed read).
 StatusOr<std::string> ReadTextFile(const std::string& path);
+
+// Same, with the reason alone as the error message ("file not found", "is a directory, expected
+// a file", ...), for callers that phrase the error around the path themselves.
+StatusOr<std::string> ReadFileContents(const std::string& path);
 
 // Writes `content` to `path` atomically; creates missing parent directories.
 Status WriteFileAtomic(const std::string& path, const std::string& content);
