@@ -333,8 +333,16 @@ void DeclareColorAndTracker(OptionSchema<AnnotateOptions>* s) {
   s->Add(
        "color.local_anchor_fraction",
        [](auto& o) -> auto& { return o.tracker.color.local_anchor_fraction; }, "",
-       "share of the global histograms in a local one")
+       "a contour point reuses the local region anchored within this share of the object's "
+       "diameter")
       .Range(LeftOpen(0, 1));
+  s->AddChoice(
+      "color.local_background_memory",
+      [](auto& o) -> auto& { return o.tracker.color.local_background_memory; },
+      Choices<LocalBackgroundMemory>{{"image", LocalBackgroundMemory::kImage},
+                                     {"object", LocalBackgroundMemory::kObject}},
+      "what a local region's background histogram keeps when the region moves in the image "
+      "(image: only where its old and new discs overlap; object: all of it, as RBOT)");
   s->Add(
        "tracker.velocity_prediction",
        [](auto& o) -> auto& { return o.tracker.velocity_prediction; }, "",

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
+#include "bcot/core/se3.h"
 #include "violations.h"
 
 namespace bcot {
@@ -20,6 +21,11 @@ Status ColorModelOptions::Validate() const {
       *refine_kind != ColorModelKind::kLocal) {
     violations.push_back(fmt::format("refine_kind = {}, must be same, global or local",
                                      static_cast<int>(*refine_kind)));
+  }
+  if (local_background_memory != LocalBackgroundMemory::kImage &&
+      local_background_memory != LocalBackgroundMemory::kObject) {
+    violations.push_back(fmt::format("local_background_memory = {}, must be image or object",
+                                     static_cast<int>(local_background_memory)));
   }
   if (bins_per_channel < 1 || bins_per_channel > 256 || 256 % bins_per_channel != 0) {
     violations.push_back(fmt::format("bins_per_channel = {}, must divide 256 (1, 2, 4, ..., 256)",
@@ -205,6 +211,13 @@ std::vector<double> GlobalColorModel::ForegroundPosteriors(
 // ---------------------------------------------------------------------------------------------
 // LocalColorModel
 
+double DiscOverlapFraction(double distance, double radius) {
+  BCOT_CHECK(radius > 0.0 && distance >= 0.0);
+  const double u = distance / (2.0 * radius);
+  if (u >= 1.0) return 0.0;
+  return 2.0 / kPi * (std::acos(u) - u * std::sqrt(1.0 - u * u));
+}
+
 LocalColorModel::LocalColorModel(const ColorModelOptions& options, double object_diameter_mm)
     : options_(options),
       anchor_radius_mm_(options.local_anchor_fraction * object_diameter_mm),
@@ -266,12 +279,20 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
     }
     if (region < 0) {
       region = static_cast<int>(regions_.size());
-      regions_.push_back({point.point_in_object, ColorHistograms(options_.bins_per_channel)});
+      regions_.push_back(
+          {point.point_in_object, ColorHistograms(options_.bins_per_channel), point.pixel});
       is_active.push_back(false);
     }
-    regions_[region].histograms.Update(foreground_bins, background_bins,
-                                       options_.learning_rate_foreground,
-                                       options_.learning_rate_background);
+    Region& learned = regions_[region];
+    double background_rate = options_.learning_rate_background;
+    if (options_.local_background_memory == LocalBackgroundMemory::kImage) {
+      const double overlap =
+          DiscOverlapFraction((point.pixel - learned.last_centre).norm(), radius);
+      background_rate = 1.0 - (1.0 - background_rate) * overlap;
+    }
+    learned.histograms.Update(foreground_bins, background_bins, options_.learning_rate_foreground,
+                              background_rate);
+    learned.last_centre = point.pixel;
     is_active[region] = true;
     active_.push_back({point.pixel, region});
   }

@@ -21,6 +21,7 @@ TEST(ColorModelOptionsTest, ValidateListsEveryViolation) {
   options.local_region_radius_px = -1.0;
   options.local_region_spacing_px = 0.0;
   options.local_anchor_fraction = 2.0;
+  options.local_background_memory = static_cast<LocalBackgroundMemory>(7);
   const Status status = options.Validate();
   ASSERT_FALSE(status.ok());
   EXPECT_EQ(status.code(), StatusCode::kInvalidConfig);
@@ -29,7 +30,8 @@ TEST(ColorModelOptionsTest, ValidateListsEveryViolation) {
         "learning_rate_foreground = 0, must be in (0, 1]",
         "learning_rate_background = 1.5, must be in (0, 1]", "background_band_px = -3, must be > 0",
         "local_region_radius_px = -1", "local_region_spacing_px = 0",
-        "local_anchor_fraction = 2, must be in (0, 1]"}) {
+        "local_anchor_fraction = 2, must be in (0, 1]",
+        "local_background_memory = 7, must be image or object"}) {
     EXPECT_NE(status.message().find(expected), std::string::npos)
         << "missing '" << expected << "' in: " << status.message();
   }
@@ -159,6 +161,98 @@ TEST_F(ColorModelSceneTest, LocalPosteriorsDiscriminateAndRegionsPersist) {
       cam_from_objcentre_ * ExpSE3((Vector6d() << 1.0, 0.5, 0.0, 0.0, 0.02, 0.01).finished());
   model->Update(image_, SilhouetteAt(moved));
   EXPECT_LT(local->num_regions(), active + active / 4);
+}
+
+TEST(DiscOverlapFractionTest, MatchesACountOfGridPoints) {
+  EXPECT_DOUBLE_EQ(DiscOverlapFraction(0.0, 5.0), 1.0);
+  EXPECT_DOUBLE_EQ(DiscOverlapFraction(10.0, 5.0), 0.0);
+  EXPECT_DOUBLE_EQ(DiscOverlapFraction(25.0, 5.0), 0.0);
+  // Against the share of a fine grid's points in a disc of radius 1 that are also in the disc
+  // moved by d.
+  for (double d : {0.1, 0.5, 1.0, 1.5, 1.9}) {
+    const int n = 1000;
+    int in_first = 0, in_both = 0;
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        const double x = -1.0 + (i + 0.5) * 2.0 / n, y = -1.0 + (j + 0.5) * 2.0 / n;
+        if (x * x + y * y > 1.0) continue;
+        ++in_first;
+        if ((x - d) * (x - d) + y * y <= 1.0) ++in_both;
+      }
+    }
+    EXPECT_NEAR(DiscOverlapFraction(d, 1.0), static_cast<double>(in_both) / in_first, 2e-3) << d;
+    EXPECT_NEAR(DiscOverlapFraction(3.0 * d, 3.0), DiscOverlapFraction(d, 1.0), 1e-12) << d;
+  }
+}
+
+// One local region, anchored to one model point, learned with the object at A and then with it
+// at B, 100 px further right, where a patch of the object's colour stands 5 px beside it.
+class LocalBackgroundMemoryTest : public ::testing::Test {
+ protected:
+  static constexpr int kWidth = 200, kHeight = 120;
+  const cv::Vec3b kGrey{128, 128, 128};
+  const cv::Vec3b kBlue{200, 60, 20};
+
+  cv::Mat3b Image(int object_x) const {
+    cv::Mat3b image(kHeight, kWidth, kGrey);
+    image(cv::Rect(object_x, 50, 20, 20)).setTo(kBlue);
+    image(cv::Rect(165, 40, 20, 40)).setTo(kBlue);  // the distractor
+    return image;
+  }
+  static Silhouette SquareAt(int object_x) {
+    Silhouette silhouette;
+    silhouette.mask = cv::Mat1b::zeros(kHeight, kWidth);
+    silhouette.mask(cv::Rect(object_x, 50, 20, 20)).setTo(255);
+    ContourPoint point;
+    point.pixel = Eigen::Vector2d(object_x + 20, 60);  // the square's right side
+    point.normal = Eigen::Vector2d(1, 0);
+    point.point_in_object = Eigen::Vector3d::Zero();
+    silhouette.contour.push_back(point);
+    return silhouette;
+  }
+  // P_f of the distractor's colour after learning at A then B (or at B alone).
+  double DistractorPosterior(LocalBackgroundMemory memory, bool learn_at_a) const {
+    ColorModelOptions options;
+    options.kind = ColorModelKind::kLocal;
+    options.local_background_memory = memory;
+    LocalColorModel model(options, 100.0);
+    if (learn_at_a) model.Update(Image(20), SquareAt(20));
+    model.Update(Image(120), SquareAt(120));
+    EXPECT_EQ(model.num_regions(), 1);
+    return model.ForegroundPosteriors(Image(120), {{170, 60}})[0];
+  }
+};
+
+TEST_F(LocalBackgroundMemoryTest, ARegionThatMovedAcrossTheImageForgetsItsOldBackground) {
+  const double fresh = DistractorPosterior(LocalBackgroundMemory::kImage, false);
+  EXPECT_GT(fresh, 0.5);  // the distractor shares the object's colour,
+  EXPECT_LT(fresh, 0.9);  // but the background around B holds it too
+  // Moved by more than a diameter: the background learned at A has no share any more.
+  EXPECT_NEAR(DistractorPosterior(LocalBackgroundMemory::kImage, true), fresh, 1e-6);
+  // RBOT's memory keeps 80 % of A's grey background, so the distractor looks like the object.
+  EXPECT_GT(DistractorPosterior(LocalBackgroundMemory::kObject, true), 0.95);
+}
+
+TEST_F(LocalBackgroundMemoryTest, ARegionThatStayedBlendsAsRbot) {
+  // At B the background holds the distractor with a share s of the samples: P_f = 1/(1 + s)
+  // of its colour when learned from that frame alone.
+  const double fresh = DistractorPosterior(LocalBackgroundMemory::kImage, false);
+  const double share = 1.0 / fresh - 1.0;
+  for (LocalBackgroundMemory memory :
+       {LocalBackgroundMemory::kImage, LocalBackgroundMemory::kObject}) {
+    ColorModelOptions options;
+    options.kind = ColorModelKind::kLocal;
+    options.local_background_memory = memory;
+    LocalColorModel model(options, 100.0);
+    // First at B without the distractor, then at B with it: the region did not move, so both
+    // memories blend the new background with α_b = 0.2, h_b(blue) = 0.2·s.
+    cv::Mat3b without = Image(120);
+    without(cv::Rect(165, 40, 20, 40)).setTo(kGrey);
+    model.Update(without, SquareAt(120));
+    model.Update(Image(120), SquareAt(120));
+    EXPECT_NEAR(model.ForegroundPosteriors(Image(120), {{170, 60}})[0], 1.0 / (1.0 + 0.2 * share),
+                1e-6);
+  }
 }
 
 TEST(ColorModelFactoryTest, MakesTheRequestedKind) {

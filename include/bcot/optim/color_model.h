@@ -31,6 +31,16 @@
 //           own histograms again in later frames (temporal consistency). A pixel's
 //           posterior is the average of P_f over the regions of the last Update covering it;
 //           pixels no region covers fall back to a global model kept alongside.
+//           A region's foreground histogram describes its part of the object and follows the
+//           anchor. Its background histogram describes what lies behind that part in the
+//           image, which changes when the part moves across the image (a turning object).
+//           With local_background_memory = image, the old background histogram keeps the
+//           weight (1 − α_b)·o, where o is the overlap of the region's disc now and at its
+//           last update, as a share of the disc's area (docs/method.md, colour models):
+//             o(d) = (2/π)·(acos(u) − u·√(1 − u²)),  u = d / (2·radius),  0 for d ≥ 2·radius.
+//           A region where it was last time blends as RBOT's; one that moved by a diameter
+//           or more forgets the old background. With `object`, every region blends with
+//           α_b wherever it moved, as in RBOT.
 //           Memory: 2·bins³ floats per region ever seen (256 KiB at 32 bins).
 //
 // Image: 8-bit, 3 channels, any channel order as long as it is the same in Update and
@@ -49,6 +59,12 @@
 namespace bcot {
 
 enum class ColorModelKind { kGlobal, kLocal };
+
+// What a local region's background histogram remembers of earlier frames (see above).
+enum class LocalBackgroundMemory {
+  kImage,   // the share of the old histogram is scaled by the overlap of the region's discs
+  kObject,  // RBOT: blended with learning_rate_background wherever the region moved
+};
 
 struct ColorModelOptions {
   ColorModelKind kind = ColorModelKind::kGlobal;
@@ -81,6 +97,10 @@ struct ColorModelOptions {
   // Local model: a contour point reuses the region whose anchor model point is within this
   // fraction of the object diameter (nearest first), else it creates one; in (0, 1].
   double local_anchor_fraction = 0.05;
+  // Local model: what a region's background histogram remembers. `image` keeps a turning
+  // object's regions from taking a same-coloured object they move next to for the object
+  // (docs/notes/issue12_small_objects.md: diffuse small bunny 0.998° → 0.512°, 2 → 0 lost).
+  LocalBackgroundMemory local_background_memory = LocalBackgroundMemory::kImage;
 
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
@@ -180,6 +200,7 @@ class LocalColorModel final : public ColorModel {
   struct Region {
     Eigen::Vector3d anchor_in_template;
     ColorHistograms histograms;
+    Eigen::Vector2d last_centre;  // image position at the region's last update
   };
 
   ColorModelOptions options_;
@@ -188,6 +209,10 @@ class LocalColorModel final : public ColorModel {
   std::vector<Region> regions_;
   std::vector<ActiveRegion> active_;
 };
+
+// Area shared by two discs of `radius` (> 0) whose centres are `distance` (>= 0) apart, as a
+// share of one disc's area: 1 at distance 0, 0 from 2·radius on.
+double DiscOverlapFraction(double distance, double radius);
 
 // The options of the refinement model: `options` with kind = refine_kind (unset: unchanged).
 ColorModelOptions RefineColorModelOptions(const ColorModelOptions& options);
