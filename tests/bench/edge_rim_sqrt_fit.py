@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""Refits the edge lines of `edge_bias_probe --dump` files with and without a √d rim term.
+
+Usage: edge_rim_sqrt_fit.py LINES DUMP [DUMP ...]
+LINES lines are drawn at random from each dump (seed 0 for each). For each, the scalar profile is formed
+as the edge stage forms it (projection of the linear RGB samples on the contrast direction of
+the channels below 0.95, mean over s in [-4, -1] minus mean over [1, 4]) and fitted over
+|s - mu0| <= 2.5 px (mu0: the steepest sample within 2 px) by Levenberg-Marquardt with a
+numerical Jacobian, two ways:
+  M0    a + g(s - mu0) + b Phi(z) + k w (z Phi(z) + phi(z)),  z = (s - mu)/w
+        (the edge stage's model, edge_lines.h; its mu should match the probe's);
+  sqrt  M0 + c sqrt(w) H(z),  H(z) = integral over u > z of sqrt(u - z) phi(u) du,
+        the blurred sqrt(max(0, mu - s)): near an occluding contour the surface normal turns
+        as the square root of the distance to it, so a radiance smooth in the normal varies
+        as sqrt(d) inside the edge. The grazing-angle sliver is then part of one ramp whose
+        shape is fixed, rather than a free offset of the edge.
+Prints per camera and normal bin (up, down, left, right): the count and the mean and median mu
+(px, + = outside the true contour; the probe runs at the true pose) of the probe, M0 and sqrt.
+Not a test; numpy only, about 10 ms per line.
+"""
+import math
+import sys
+
+import numpy as np
+
+U = np.linspace(-8.0, 8.0, 4001)
+GAUSS = np.exp(-U**2 / 2.0) / math.sqrt(2.0 * math.pi)
+Z_GRID = np.linspace(-12.0, 12.0, 2401)
+H_GRID = np.array([np.sum(np.sqrt(np.maximum(0.0, U - z)) * GAUSS) * (U[1] - U[0]) for z in Z_GRID])
+ERF = np.vectorize(math.erf)
+
+
+def blurred_sqrt(z):
+    return np.where(z < Z_GRID[0], np.sqrt(np.maximum(-z, 0.0)), np.interp(z, Z_GRID, H_GRID))
+
+
+def model(p, s, mu0, with_sqrt):
+    a, g, b, mu, log_w, k = p[:6]
+    w = math.exp(log_w)
+    z = (s - mu) / w
+    cdf = 0.5 * (1.0 + ERF(z / math.sqrt(2.0)))
+    pdf = np.exp(-z * z / 2.0) / math.sqrt(2.0 * math.pi)
+    value = a + g * (s - mu0) + b * cdf + k * w * (z * cdf + pdf)
+    if with_sqrt:
+        value = value + p[6] * math.sqrt(w) * blurred_sqrt(z)
+    return value
+
+
+def fit(s, y, mu0, with_sqrt):
+    """Levenberg-Marquardt; the parameters, or None when mu or w leave their plausible range."""
+    inside = y[s < mu0 - 0.5].mean() if np.any(s < mu0 - 0.5) else y[0]
+    outside = y[s > mu0 + 0.5].mean() if np.any(s > mu0 + 0.5) else y[-1]
+    p = np.array([inside, 0.0, outside - inside, mu0, math.log(0.7), 0.0] + ([0.0] if with_sqrt else []))
+    damping = 1e-3
+    r = model(p, s, mu0, with_sqrt) - y
+    cost = r @ r
+    for _ in range(60):
+        jacobian = np.empty((len(s), len(p)))
+        for j in range(len(p)):
+            d = np.zeros_like(p)
+            d[j] = 1e-6
+            jacobian[:, j] = (model(p + d, s, mu0, with_sqrt) - model(p - d, s, mu0, with_sqrt)) / 2e-6
+        a = jacobian.T @ jacobian
+        gradient = jacobian.T @ r
+        step = np.zeros_like(p)
+        while damping <= 1e8:
+            step = np.linalg.solve(a + damping * np.diag(np.diag(a) + 1e-12), -gradient)
+            trial = p + step
+            if not -5.0 < trial[4] < 3.0:
+                damping *= 4.0
+                continue
+            r_trial = model(trial, s, mu0, with_sqrt) - y
+            if r_trial @ r_trial < cost:
+                p, r, cost = trial, r_trial, r_trial @ r_trial
+                damping = max(damping / 3.0, 1e-9)
+                break
+            damping *= 4.0
+        if damping > 1e8 or np.abs(step).max() < 1e-7:
+            break
+    if abs(p[3] - mu0) > 2.0 or not 0.2 < math.exp(p[4]) < 3.0:
+        return None
+    return p
+
+
+def run(path, max_lines):
+    rng = np.random.default_rng(0)
+    rows = [line.split() for line in open(path)]
+    half = (len(rows[0]) - 9) // 3 // 2
+    s = np.arange(-half, half + 1) * 0.25
+    results = {}
+    for i in rng.permutation(len(rows))[:max_lines]:
+        fields = rows[i]
+        colors = np.array(fields[9:], float).reshape(-1, 3)
+        inside = colors[(s >= -4) & (s <= -1)].mean(0)
+        outside = colors[(s >= 1) & (s <= 4)].mean(0)
+        direction = (inside - outside) * (colors.max(0) < 0.95)
+        if np.linalg.norm(direction) < 1e-6:
+            continue
+        y = colors @ (direction / np.linalg.norm(direction))
+        near = np.abs(s) <= 2.0
+        mu0 = s[near][np.argmax(np.abs(np.gradient(y, s)[near]))]
+        window = np.abs(s - mu0) <= 2.5
+        plain = fit(s[window], y[window], mu0, False)
+        rim = fit(s[window], y[window], mu0, True)
+        if plain is None or rim is None:
+            continue
+        results.setdefault((fields[0], fields[2]), []).append((float(fields[7]), plain[3], rim[3]))
+    for (camera, direction), values in sorted(results.items()):
+        v = np.array(values)
+        print(f"{path} {camera} {direction:5s} n {len(v):4d} | "
+              + " | ".join(f"{name} mean {v[:, c].mean():+.3f} median {np.median(v[:, c]):+.3f}"
+                           for c, name in enumerate(("probe", "M0", "sqrt"))))
+
+
+def main():
+    if len(sys.argv) < 3:
+        sys.exit(__doc__)
+    for path in sys.argv[2:]:
+        run(path, int(sys.argv[1]))
+
+
+if __name__ == "__main__":
+    main()
