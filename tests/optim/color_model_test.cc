@@ -210,12 +210,15 @@ class LocalBackgroundMemoryTest : public ::testing::Test {
     silhouette.contour.push_back(point);
     return silhouette;
   }
-  // P_f of the distractor's colour after learning at A then B (or at B alone).
-  double DistractorPosterior(LocalBackgroundMemory memory, bool learn_at_a) const {
+  static LocalColorModel Model(LocalBackgroundMemory memory) {
     ColorModelOptions options;
     options.kind = ColorModelKind::kLocal;
     options.local_background_memory = memory;
-    LocalColorModel model(options, 100.0);
+    return LocalColorModel(options, 100.0);
+  }
+  // P_f of the distractor's colour after learning at A then B (or at B alone).
+  double DistractorPosterior(LocalBackgroundMemory memory, bool learn_at_a) const {
+    LocalColorModel model = Model(memory);
     if (learn_at_a) model.Update(Image(20), SquareAt(20));
     model.Update(Image(120), SquareAt(120));
     EXPECT_EQ(model.num_regions(), 1);
@@ -240,10 +243,7 @@ TEST_F(LocalBackgroundMemoryTest, ARegionThatStayedBlendsAsRbot) {
   const double share = 1.0 / fresh - 1.0;
   for (LocalBackgroundMemory memory :
        {LocalBackgroundMemory::kImage, LocalBackgroundMemory::kObject}) {
-    ColorModelOptions options;
-    options.kind = ColorModelKind::kLocal;
-    options.local_background_memory = memory;
-    LocalColorModel model(options, 100.0);
+    LocalColorModel model = Model(memory);
     // First at B without the distractor, then at B with it: the region did not move, so both
     // memories blend the new background with α_b = 0.2, h_b(blue) = 0.2·s.
     cv::Mat3b without = Image(120);

@@ -268,20 +268,20 @@ std::vector<double> TrackedBiasNorms(const std::string& config,
                                      const MultiViewTrackerOptions& options,
                                      const ImageEdit& edit = nullptr) {
   const SynthesizedScene scene(config, overrides);
-  const Sequence* sequence = &scene.sequence;
-  const std::vector<Eigen::Isometry3d>* truth = &scene.truth;
+  const Sequence& sequence = scene.sequence;
+  const std::vector<Eigen::Isometry3d>& truth = scene.truth;
   const RayCaster caster(*scene.mesh);
   const Eigen::Isometry3d objcentre_from_template = scene.mesh->objcentre_from_template();
   std::vector<TrackedView> views;
-  for (int c = 0; c < sequence->rig.size(); ++c) {
-    views.push_back({sequence->rig[c].camera, sequence->rig[c].cam_from_rig, 1.0});
+  for (int c = 0; c < sequence.rig.size(); ++c) {
+    views.push_back({sequence.rig[c].camera, sequence.rig[c].cam_from_rig, 1.0});
   }
   auto images_of = [&](int frame) {
     std::vector<cv::Mat3b> images;
-    for (int c = 0; c < sequence->rig.size(); ++c) {
-      images.emplace_back(cv::imread(sequence->image_paths[c][frame]));
+    for (int c = 0; c < sequence.rig.size(); ++c) {
+      images.emplace_back(cv::imread(sequence.image_paths[c][frame]));
       if (edit) {
-        edit(caster, sequence->rig[c].camera, sequence->rig[c].cam_from_rig * (*truth)[frame],
+        edit(caster, sequence.rig[c].camera, sequence.rig[c].cam_from_rig * truth[frame],
              &images.back());
       }
     }
@@ -290,19 +290,19 @@ std::vector<double> TrackedBiasNorms(const std::string& config,
   StatusOr<std::unique_ptr<MultiViewTracker>> tracker =
       MultiViewTracker::Create(caster, views, options);
   BCOT_CHECK(tracker.ok());
-  Eigen::Isometry3d pose = (*truth)[0] * objcentre_from_template.inverse();
+  Eigen::Isometry3d pose = truth[0] * objcentre_from_template.inverse();
   BCOT_CHECK((*tracker)->Reset(images_of(0), pose).ok());
   std::vector<Eigen::Vector3d> sum(views.size(), Eigen::Vector3d::Zero());
-  for (int frame = 1; frame < sequence->num_frames; ++frame) {
+  for (int frame = 1; frame < sequence.num_frames; ++frame) {
     BCOT_CHECK((*tracker)->Track(images_of(frame), &pose).ok());
-    const Eigen::Isometry3d expected = (*truth)[frame] * objcentre_from_template.inverse();
+    const Eigen::Isometry3d expected = truth[frame] * objcentre_from_template.inverse();
     for (size_t c = 0; c < views.size(); ++c) {
       sum[c] += (views[c].cam_from_rig * pose).translation() -
                 (views[c].cam_from_rig * expected).translation();
     }
   }
   std::vector<double> norms;
-  for (const Eigen::Vector3d& s : sum) norms.push_back(s.norm() / (sequence->num_frames - 1));
+  for (const Eigen::Vector3d& s : sum) norms.push_back(s.norm() / (sequence.num_frames - 1));
   return norms;
 }
 
@@ -344,8 +344,8 @@ TEST(EdgeStageTest, RemovesMostOfTheShadedRimBias) {
 TEST(EdgeStageTest, SaturatedRimsAreMeasuredOnTheUnclippedChannels) {
   const SynthesizedScene scene("configs/synth/saturated_rim.yaml",
                                {"motion.num_frames=7", "render.threads=2"});
-  const Sequence* sequence = &scene.sequence;
-  const std::vector<Eigen::Isometry3d>* truth = &scene.truth;
+  const Sequence& sequence = scene.sequence;
+  const std::vector<Eigen::Isometry3d>& truth = scene.truth;
   const RayCaster caster(*scene.mesh);
   const Eigen::Isometry3d template_from_objcentre = scene.mesh->objcentre_from_template().inverse();
 
@@ -358,14 +358,14 @@ TEST(EdgeStageTest, SaturatedRimsAreMeasuredOnTheUnclippedChannels) {
   auto mean_offset = [&](const EdgeLineOptions& options, int c) {
     double sum = 0.0;
     int count = 0;
-    for (int frame = 0; frame < sequence->num_frames; ++frame) {
-      const cv::Mat3b image = cv::imread(sequence->image_paths[c][frame]);
-      const RigCamera& view = sequence->rig[c];
+    for (int frame = 0; frame < sequence.num_frames; ++frame) {
+      const cv::Mat3b image = cv::imread(sequence.image_paths[c][frame]);
+      const RigCamera& view = sequence.rig[c];
       const Silhouette silhouette =
-          RenderSilhouette(caster, view.camera, view.cam_from_rig * (*truth)[frame]);
+          RenderSilhouette(caster, view.camera, view.cam_from_rig * truth[frame]);
       const StatusOr<CorrespondenceLines> lines =
           BuildEdgeLines(caster, view.camera, view.cam_from_rig,
-                         (*truth)[frame] * template_from_objcentre, image, silhouette, options);
+                         truth[frame] * template_from_objcentre, image, silhouette, options);
       EXPECT_TRUE(lines.ok());
       if (!lines.ok()) continue;
       for (const CorrespondenceLine& line : lines->lines) {
@@ -373,10 +373,10 @@ TEST(EdgeStageTest, SaturatedRimsAreMeasuredOnTheUnclippedChannels) {
         ++count;
       }
     }
-    EXPECT_GT(count, 100 * sequence->num_frames);
+    EXPECT_GT(count, 100 * sequence.num_frames);
     return sum / std::max(count, 1);
   };
-  for (int c = 0; c < sequence->rig.size(); ++c) {
+  for (int c = 0; c < sequence.rig.size(); ++c) {
     SCOPED_TRACE(c);
     const double ignored = mean_offset(clipping_ignored, c);
     const double handled = mean_offset(handling, c);
