@@ -259,14 +259,19 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
       HtmlEscape(FormatProvenance(report.provenance)));
   html += fmt::format("<div class='verdict {0}' id='verdict'><b>{0}</b>",
                       report.accepted ? "accepted" : "rejected");
+  const std::string coverage =
+      report.options.min_found_fraction > 0.0
+          ? fmt::format(", its boundary is not visible on more than {:.0f}% of the contour",
+                        100.0 * (1.0 - report.options.min_found_fraction))
+          : "";
   html += fmt::format(
-      " — a frame-view is bad when its {} reprojection error exceeds {} px, and cannot be told "
-      "(grey) when the object is not in view or its boundary is not visible on more than "
-      "{:.0f}% of the contour; a view may be bad on {:.0f}% and unverifiable on {:.0f}% of "
-      "frames.",
+      " — a frame-view is bad when its {0} reprojection error exceeds {1} px by more than "
+      "{2}σ, and cannot be told (grey) when the object is not in view{3} or the {0} is within "
+      "{2}σ of {1} px (σ: the spread of the boundary offsets, and what the visible boundary "
+      "leaves unconstrained of the rest of the contour); a view may be bad on {4:.0f}% and "
+      "unverifiable on {5:.0f}% of frames.",
       QualityStatisticName(report.options.statistic), report.options.threshold_px,
-      100.0 * (1.0 - report.options.min_found_fraction),
-      100.0 * report.options.allowed_bad_fraction,
+      report.options.confidence_z, coverage, 100.0 * report.options.allowed_bad_fraction,
       100.0 * report.options.allowed_unverified_fraction);
   if (report.options.refine_on_edges) {
     html +=

@@ -56,7 +56,7 @@ OptionSchema<QualityOptions>* BuildQualityOptionSchema() {
   s->Add(
        "quality.min_found_fraction", [](auto& o) -> auto& { return o.min_found_fraction; }, "",
        "below this fraction of contour points with a usable boundary the frame-view cannot be "
-       "verified")
+       "verified (0: no floor; the statistic's σ covers what the usable points leave unseen)")
       .Range(Closed(0, 1));
   s->Add(
        "quality.allowed_unverified_fraction",

@@ -130,9 +130,17 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
     const std::vector<double> fitted = fitter.Fit(offsets, sigmas, options.fit_scale_px);
     quality.median_px = AbsPercentile(fitted, 0.5);
     quality.p90_px = AbsPercentile(fitted, 0.9);
-    if (options.bootstrap_resamples > 0) {
-      quality.statistic_sigma_px = fitter.BootstrapPercentileSigma(
-          offsets, sigmas, options.fit_scale_px, fraction, options.bootstrap_resamples, seed);
+    // σ of the judged statistic: the spread of the usable points' own fit (bootstrap) and what
+    // they cannot tell about the rest of the contour (prediction σ); independent, so in
+    // quadrature.
+    const double prediction = fitter.PredictionSigmaPercentile(offsets, sigmas, fraction);
+    const double bootstrap =
+        options.bootstrap_resamples > 0
+            ? fitter.BootstrapPercentileSigma(offsets, sigmas, options.fit_scale_px, fraction,
+                                              options.bootstrap_resamples, seed)
+            : 0.0;
+    if (std::isfinite(prediction) && std::isfinite(bootstrap)) {
+      quality.statistic_sigma_px = std::hypot(bootstrap, prediction);
     }
   } else {
     quality.median_px = quality.raw_median_px;
@@ -191,12 +199,16 @@ void Summarize(QualityReport* report) {
           summary.worst_px, options.threshold_px));
     }
     if (summary.unverified_fraction > options.allowed_unverified_fraction) {
+      const std::string coverage =
+          options.min_found_fraction > 0.0
+              ? fmt::format("fewer than {:.0f}% of its contour with a visible boundary, ",
+                            100.0 * options.min_found_fraction)
+              : "";
       report->reasons.push_back(fmt::format(
           "view {}: cannot tell on {} of {} frames ({:.0f}%, {:.0f}% allowed): object not in "
-          "view, fewer than {:.0f}% of its contour with a visible boundary, or {} within {}σ "
-          "of {} px",
+          "view, {}or {} within {}σ of {} px",
           summary.name, summary.unverified_frames, num_frames, 100.0 * summary.unverified_fraction,
-          100.0 * options.allowed_unverified_fraction, 100.0 * options.min_found_fraction,
+          100.0 * options.allowed_unverified_fraction, coverage,
           QualityStatisticName(options.statistic), options.confidence_z, options.threshold_px));
     }
     report->views.push_back(summary);

@@ -115,6 +115,33 @@ double RigidMotionFitter::BootstrapPercentileSigma(const std::vector<double>& of
   return std::sqrt(std::max(0.0, (sum_squares - count * mean * mean) / (count - 1)));
 }
 
+double RigidMotionFitter::PredictionSigmaPercentile(const std::vector<double>& offsets,
+                                                    const std::vector<double>& sigmas_px,
+                                                    double fraction) const {
+  const size_t n = static_cast<size_t>(rows_.rows());
+  BCOT_CHECK(offsets.size() == n);
+  BCOT_CHECK(sigmas_px.empty() || sigmas_px.size() == n);
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+  int used = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(offsets[i])) continue;
+    const double sigma = sigmas_px.empty() ? 0.0 : sigmas_px[i];
+    information +=
+        rows_.row(i).transpose() * rows_.row(i) / (sigma * sigma + kModelSigmaPx * kModelSigmaPx);
+    ++used;
+  }
+  if (used < 6) return kNaN;
+  // The fit's damping: directions no point observes stay finite (and move no contour point).
+  information.diagonal().array() += 1e-9 * information.trace() + 1e-12;
+  const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> covariance(information);
+  std::vector<double> sigmas(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Matrix<double, 6, 1> row = rows_.row(i).transpose();
+    sigmas[i] = std::sqrt(std::max(0.0, row.dot(covariance.solve(row))));
+  }
+  return AbsPercentile(sigmas, fraction);
+}
+
 std::vector<double> FitRigidMotionOffsets(const std::vector<ContourPoint>& contour,
                                           const std::vector<double>& offsets, const Camera& camera,
                                           const Eigen::Isometry3d& cam_from_object,

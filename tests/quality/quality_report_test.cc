@@ -207,6 +207,55 @@ TEST(QualityReportTest, RigidMotionFitIgnoresOutliersAndKeepsThePoseError) {
   EXPECT_TRUE(std::isnan(fitter.BootstrapPercentileSigma(observed, {}, 1.0, 0.9, 1, 5)));
 }
 
+// The prediction σ of the fitted offsets stays small while the points with an offset, however
+// few, observe every motion of the contour, and becomes large where they leave one unobserved.
+// A square seen face-on moves 0.5 px right and 1 px down: with only its left and right sides
+// measured, nothing sees the vertical shift, and the fit (damped there) reports half the p90.
+TEST(QualityReportTest, PredictionSigmaSeesWhatTheUsablePointsCannot) {
+  const Camera camera("cam", 640, 512, 800, 800, 320, 256);
+  const double depth_mm = 500.0;
+  std::vector<ContourPoint> square;
+  for (int side = 0; side < 4; ++side) {
+    const Eigen::Vector2d normal = side == 0   ? Eigen::Vector2d(-1, 0)
+                                   : side == 1 ? Eigen::Vector2d(1, 0)
+                                   : side == 2 ? Eigen::Vector2d(0, -1)
+                                               : Eigen::Vector2d(0, 1);
+    const Eigen::Vector2d along(-normal.y(), normal.x());
+    for (int k = -50; k < 50; ++k) {
+      ContourPoint point;
+      point.pixel = Eigen::Vector2d(320, 256) + 100.0 * normal + 2.0 * k * along;
+      point.normal = normal;
+      point.point_in_object = Eigen::Vector3d((point.pixel.x() - 320) * depth_mm / 800,
+                                              (point.pixel.y() - 256) * depth_mm / 800, depth_mm);
+      square.push_back(point);
+    }
+  }
+  const RigidMotionFitter fitter(square, camera, Eigen::Isometry3d::Identity(),
+                                 Eigen::Vector3d(0, 0, depth_mm));
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<double> truth, all, a_third, sides;
+  const double nan = std::nan("");
+  for (const ContourPoint& point : square) {
+    truth.push_back(point.normal.dot(Eigen::Vector2d(0.5, 1.0)));
+    all.push_back(truth.back() + 0.2 * (unit(random) - 0.5));
+    a_third.push_back(unit(random) < 0.3 ? all.back() : nan);
+    sides.push_back(point.normal.y() == 0.0 ? all.back() : nan);
+  }
+  const std::vector<double> sigmas(square.size(), 0.1);
+  const double every_point = fitter.PredictionSigmaPercentile(all, sigmas, 0.9);
+  EXPECT_GT(every_point, 0.0);
+  EXPECT_LT(every_point, 0.05);
+  EXPECT_GT(fitter.PredictionSigmaPercentile(a_third, sigmas, 0.9), every_point);
+  EXPECT_LT(fitter.PredictionSigmaPercentile(a_third, sigmas, 0.9), 0.1);
+  EXPECT_NEAR(AbsPercentile(fitter.Fit(a_third, sigmas, 0.5), 0.9), 1.0, 0.1);
+  EXPECT_GT(fitter.PredictionSigmaPercentile(sides, sigmas, 0.9), 10.0);
+  EXPECT_NEAR(AbsPercentile(fitter.Fit(sides, sigmas, 0.5), 0.9), 0.5, 0.1);
+  std::vector<double> five(square.size(), nan);
+  for (size_t i = 0; i < 5; ++i) five[i] = all[i];
+  EXPECT_TRUE(std::isnan(fitter.PredictionSigmaPercentile(five, sigmas, 0.9)));
+}
+
 TEST(QualityReportTest, AbsPercentileIgnoresNaN) {
   const double nan = std::nan("");
   EXPECT_DOUBLE_EQ(AbsPercentile({-1, 2, nan, 3, -4, 5}, 0.5), 3.0);

@@ -34,8 +34,11 @@ struct QualityOptions {
   // Minimum score for a boundary to count as found; in (0, 1 + edge_weight).
   double min_contrast = 0.3;
   // Below this fraction of contour points with a usable boundary, the frame-view cannot be
-  // verified ("cannot tell": occluded, camouflaged, no visible edge); in [0, 1].
-  double min_found_fraction = 0.5;
+  // verified ("cannot tell"); in [0, 1]. 0 = no such floor: the statistic's σ already grows
+  // where the usable points leave part of the contour unconstrained (the prediction σ of the
+  // rigid-motion fit), so a small object with a usable boundary on 40 % of its contour all
+  // around can be told, and one seen on two sides only cannot.
+  double min_found_fraction = 0.0;
   // A view may be unverifiable on at most this fraction of frames (the sequence is rejected
   // otherwise: its annotation cannot be checked); in [0, 1].
   double allowed_unverified_fraction = 0.25;

@@ -33,8 +33,11 @@
 //      reprojection error. To first order this is exactly the true projected contour error of
 //      the pose when the image boundary is the true contour. The frame-view reports the median
 //      and the 90th percentile of |offset| (the raw statistics are kept beside them in
-//      quality.json / .csv), and the standard deviation of the judged statistic over
-//      bootstrap resamples of the usable points (bootstrap_resamples).
+//      quality.json / .csv), and σ, the standard deviation of the judged statistic: the
+//      spread over bootstrap resamples of the usable points (bootstrap_resamples) and, in
+//      quadrature, the fit's prediction σ over the whole contour (what the usable points leave
+//      unconstrained: a side of the object without a usable boundary whose motion nothing
+//      else observes; RigidMotionFitter::PredictionSigmaPercentile).
 // Why p90 by default: shifting the object 3 px in the image moves its contour by 3·|cos θ| along
 // the normals, a median of only ~2 px, so the median cannot separate a 3 px error from the 2 px
 // threshold; the p90 (~2.9 px) can.
@@ -42,9 +45,9 @@
 // shifted 3 px and randomly perturbed poses): see the numbers in the README's quality section.
 //
 // A frame-view is *unverifiable* ("cannot tell") when the object is not in the view or fewer
-// than min_found_fraction of its contour points have a usable boundary (occluded, camouflaged,
-// no visible edge). Otherwise, with s its `statistic` (p90 by default), σ the bootstrap
-// standard deviation of s and z = confidence_z: *bad* when s − z·σ > threshold_px, good when
+// than min_found_fraction (default 0: no floor) of its contour points have a usable boundary.
+// Otherwise, with s its `statistic` (p90 by default), σ its standard deviation (step 5) and
+// z = confidence_z: *bad* when s − z·σ > threshold_px, good when
 // s + z·σ <= threshold_px, and unverifiable in between (the boundary offsets cannot decide: a
 // few points far from the centre, an unstable fit). A sequence is rejected when, for any view, the
 // fraction of bad frames exceeds allowed_bad_fraction or the fraction of unverifiable frames

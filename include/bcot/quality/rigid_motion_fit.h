@@ -37,6 +37,16 @@ class RigidMotionFitter {
                                   const std::vector<double>& sigmas_px, double scale_px,
                                   double fraction, int resamples, uint32_t seed) const;
 
+  // The `fraction` percentile, over every contour point, of the standard deviation of the
+  // fitted offset there: s_i = √(r_iᵀ I⁻¹ r_i), I = Σ r_j r_jᵀ / (σ_j² + σ_model²) over the
+  // points j with a finite offset (Cramér-Rao, DESIGN.md "Quality"). Small when those points
+  // observe every motion that moves the contour; large when they leave one unobserved (a side
+  // of the object with no usable boundary) which moves the rest of the contour, whose fitted
+  // offsets then say nothing. Motions that move no contour point add nothing. NaN when fewer
+  // than 6 points have an offset.
+  double PredictionSigmaPercentile(const std::vector<double>& offsets,
+                                   const std::vector<double>& sigmas_px, double fraction) const;
+
  private:
   Eigen::Matrix<double, Eigen::Dynamic, 6> rows_;
 };
