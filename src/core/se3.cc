@@ -13,6 +13,26 @@ namespace {
 // three-term Taylor series are used; their truncation error is O(θ⁶) < 1e-18.
 constexpr double kSmallAngle = 1e-3;
 
+// The coefficients of exp(φ^) = I + a·φ^ + b·φ^² and of the left Jacobian J = I + b·φ^ + c·φ^²
+// with θ = |φ|: a = sin θ / θ, b = (1 − cos θ) / θ², c = (θ − sin θ) / θ³.
+struct RodriguesCoefficients {
+  double a, b, c;
+};
+
+RodriguesCoefficients RodriguesCoefficientsOf(const Eigen::Vector3d& phi) {
+  const double theta2 = phi.squaredNorm();
+  const double theta = std::sqrt(theta2);
+  if (theta < kSmallAngle) {
+    return {1.0 - theta2 / 6.0 * (1.0 - theta2 / 20.0),           // a
+            0.5 - theta2 / 24.0 * (1.0 - theta2 / 30.0),          // b
+            1.0 / 6.0 - theta2 / 120.0 * (1.0 - theta2 / 42.0)};  // c
+  }
+  const double sin_theta = std::sin(theta);
+  return {sin_theta / theta,                        // a
+          (1.0 - std::cos(theta)) / theta2,         // b
+          (theta - sin_theta) / (theta2 * theta)};  // c
+}
+
 }  // namespace
 
 Eigen::Matrix3d Hat(const Eigen::Vector3d& v) {
@@ -33,18 +53,9 @@ Eigen::Matrix4d HatSE3(const Vector6d& twist) {
 }
 
 Eigen::Matrix3d ExpSO3(const Eigen::Vector3d& phi) {
-  const double theta2 = phi.squaredNorm();
-  const double theta = std::sqrt(theta2);
   const Eigen::Matrix3d phi_hat = Hat(phi);
-  double a, b;  // R = I + a·φ^ + b·φ^²
-  if (theta < kSmallAngle) {
-    a = 1.0 - theta2 / 6.0 * (1.0 - theta2 / 20.0);
-    b = 0.5 - theta2 / 24.0 * (1.0 - theta2 / 30.0);
-  } else {
-    a = std::sin(theta) / theta;
-    b = (1.0 - std::cos(theta)) / theta2;
-  }
-  return Eigen::Matrix3d::Identity() + a * phi_hat + b * phi_hat * phi_hat;
+  const RodriguesCoefficients k = RodriguesCoefficientsOf(phi);
+  return Eigen::Matrix3d::Identity() + k.a * phi_hat + k.b * phi_hat * phi_hat;
 }
 
 Eigen::Vector3d LogSO3(const Eigen::Quaterniond& rotation) {
@@ -66,18 +77,9 @@ Eigen::Vector3d LogSO3(const Eigen::Matrix3d& rotation) {
 }
 
 Eigen::Matrix3d LeftJacobianSO3(const Eigen::Vector3d& phi) {
-  const double theta2 = phi.squaredNorm();
-  const double theta = std::sqrt(theta2);
   const Eigen::Matrix3d phi_hat = Hat(phi);
-  double a, b;  // J = I + a·φ^ + b·φ^²
-  if (theta < kSmallAngle) {
-    a = 0.5 - theta2 / 24.0 * (1.0 - theta2 / 30.0);
-    b = 1.0 / 6.0 - theta2 / 120.0 * (1.0 - theta2 / 42.0);
-  } else {
-    a = (1.0 - std::cos(theta)) / theta2;
-    b = (theta - std::sin(theta)) / (theta2 * theta);
-  }
-  return Eigen::Matrix3d::Identity() + a * phi_hat + b * phi_hat * phi_hat;
+  const RodriguesCoefficients k = RodriguesCoefficientsOf(phi);
+  return Eigen::Matrix3d::Identity() + k.b * phi_hat + k.c * phi_hat * phi_hat;
 }
 
 Eigen::Matrix3d InverseLeftJacobianSO3(const Eigen::Vector3d& phi) {
