@@ -117,12 +117,8 @@ StatusOr<Camera> ParseBcotIntrinsics(const std::string& text, const std::string&
         fmt::format("{}:{}: not a pinhole matrix [[fx,0,cx],[0,fy,cy],[0,0,1]]: {}", source, line,
                     JoinMessages(problems)));
   }
-  Camera camera;
-  camera.fx = k[0];
-  camera.cx = k[2];
-  camera.fy = k[4];
-  camera.cy = k[5];
-  return camera;
+  return Camera(/*name=*/"", /*width=*/0, /*height=*/0, /*fx=*/k[0], /*fy=*/k[4], /*cx=*/k[2],
+                /*cy=*/k[5]);
 }
 
 StatusOr<Camera> ReadBcotIntrinsics(const std::string& path) {

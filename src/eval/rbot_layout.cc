@@ -63,12 +63,8 @@ StatusOr<Camera> ReadRbotCalibration(const std::string& path) {
           "{}: number {} is '{}'; only zero distortion is supported", where, i + 1, tokens[i]));
     }
   }
-  Camera camera;
-  camera.fx = values[0];
-  camera.fy = values[1];
-  camera.cx = values[2];
-  camera.cy = values[3];
-  return camera;
+  return Camera(/*name=*/"", /*width=*/0, /*height=*/0, /*fx=*/values[0], /*fy=*/values[1],
+                /*cx=*/values[2], /*cy=*/values[3]);
 }
 
 StatusOr<std::vector<Eigen::Isometry3d>> ReadRbotPoses(const std::string& path) {
