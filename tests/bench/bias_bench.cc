@@ -34,7 +34,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
+#include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
@@ -165,18 +165,10 @@ int main(int argc, char** argv) {
   const std::vector<Eigen::Isometry3d>* truth = &loaded->truth;
   const Mesh* mesh = &loaded->mesh;
   const RayCaster caster(*mesh);
-  const Eigen::Isometry3d objcentre_from_template = mesh->objcentre_from_template();
-  auto objcentre = [&](const Eigen::Isometry3d& rig_from_object) {
-    return Eigen::Isometry3d(rig_from_object * objcentre_from_template.inverse());
-  };
   const int num_views = sequence->rig.size();
-  auto load_images = [&](int frame) {
-    std::vector<cv::Mat3b> images;
-    for (int c = 0; c < num_views; ++c) {
-      images.emplace_back(cv::imread(sequence->image_paths[c][frame]));
-    }
-    return images;
-  };
+  std::vector<int> cameras(num_views);
+  std::iota(cameras.begin(), cameras.end(), 0);
+  auto load_images = [&](int frame) { return bench::ReadFrameImages(*sequence, cameras, frame); };
 
   // Boundary contrast and evidence at the truth.
   std::vector<double> contrast_num(num_views, 0.0), contrast_den(num_views, 0.0);
@@ -203,7 +195,7 @@ int main(int argc, char** argv) {
       local.kind = ColorModelKind::kLocal;
       LocalColorModel model(local, mesh->diameter());
       model.Update(images[c], silhouette);
-      const Eigen::Isometry3d rig_from_objcentre = objcentre((*truth)[frame]);
+      const Eigen::Isometry3d rig_from_objcentre = loaded->RigFromObjcentre(frame);
       StatusOr<CorrespondenceLines> region =
           BuildCorrespondenceLines(caster, camera, cam_from_rig, rig_from_objcentre, images[c],
                                    model, silhouette, options->tracker.frame.lines);
@@ -244,7 +236,7 @@ int main(int argc, char** argv) {
   std::vector<CameraStats> stats(num_views);
   int lost = 0, timed = 0;
   double cpu_ms = 0.0;
-  Eigen::Isometry3d rig_from_objcentre = objcentre((*truth)[0]);
+  Eigen::Isometry3d rig_from_objcentre = loaded->RigFromObjcentre(0);
   if (!(*tracker)->Reset(load_images(0), rig_from_objcentre).ok()) return 1;
   // The temporal window of the annotate config, when it is on, refines the per-frame poses
   // like `bcot annotate` does (frame 0 and lost frames held at the truth they were reset to).
@@ -262,7 +254,7 @@ int main(int argc, char** argv) {
     cpu_ms += 1000.0 * static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
     ++timed;
     if (!summary.ok()) return Fail(summary.status());
-    const Eigen::Isometry3d expected_rig = objcentre((*truth)[frame]);
+    const Eigen::Isometry3d expected_rig = loaded->RigFromObjcentre(frame);
     bool is_lost = false;
     for (int c = 0; c < num_views; ++c) {
       const Eigen::Isometry3d estimate = sequence->rig[c].cam_from_rig * rig_from_objcentre;
@@ -293,7 +285,7 @@ int main(int argc, char** argv) {
   }
   for (int frame = 1; frame < sequence->num_frames; ++frame) {
     if (!counted[frame]) continue;
-    const Eigen::Isometry3d expected_rig = objcentre((*truth)[frame]);
+    const Eigen::Isometry3d expected_rig = loaded->RigFromObjcentre(frame);
     for (int c = 0; c < num_views; ++c) {
       const Eigen::Isometry3d estimate = sequence->rig[c].cam_from_rig * poses[frame];
       const Eigen::Isometry3d expected = sequence->rig[c].cam_from_rig * expected_rig;

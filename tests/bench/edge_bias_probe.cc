@@ -113,7 +113,6 @@ int main(int argc, char** argv) {
   const std::vector<Eigen::Isometry3d>* gt = &loaded->truth;
   const Mesh* mesh = &loaded->mesh;
   const RayCaster caster(*mesh);
-  const Eigen::Isometry3d template_from_objcentre = mesh->objcentre_from_template().inverse();
   // edge.response auto (the annotate default) is the tracker's to estimate; measured here
   // directly, the lines are decoded as sRGB unless --set edge.response=... says otherwise.
   FrameProblemOptions frame = options->tracker.frame;
@@ -151,7 +150,7 @@ int main(int argc, char** argv) {
         views.push_back(view);
       }
       const StatusOr<ResponseEstimate> estimate =
-          EstimateImageResponse(problem, views, (*gt)[f] * template_from_objcentre, estimation);
+          EstimateImageResponse(problem, views, loaded->RigFromObjcentre(f), estimation);
       if (!estimate.ok()) return Fail(estimate.status().message());
       std::printf("frame %3d best %-10s |", f, estimate->response.Name().c_str());
       for (const ResponseScore& score : estimate->scores) {
@@ -180,7 +179,7 @@ int main(int argc, char** argv) {
     for (int f = 0; f < frames; ++f) {
       const StatusOr<cv::Mat3b> image = ReadCameraImage(sequence->image_paths[v][f], camera.camera);
       if (!image.ok()) return Fail(image.status().message());
-      const Eigen::Isometry3d rig_from_objcentre = (*gt)[f] * template_from_objcentre;
+      const Eigen::Isometry3d rig_from_objcentre = loaded->RigFromObjcentre(f);
       const Silhouette silhouette =
           RenderSilhouette(caster, camera.camera, camera.cam_from_rig * (*gt)[f], ContourOptions{});
       const StatusOr<CorrespondenceLines> lines = BuildEdgeLines(

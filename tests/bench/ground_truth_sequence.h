@@ -5,6 +5,8 @@
 #include <Eigen/Geometry>
 #include <cstdio>
 #include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,7 +22,20 @@ struct GroundTruthSequence {
   Sequence sequence;
   std::vector<Eigen::Isometry3d> truth;  // rig_from_object per frame (gt/rig_from_object.txt)
   Mesh mesh;                             // the object's mesh in mm
+
+  // The truth of `frame` as rig_from_objcentre, the pose the tracker estimates.
+  Eigen::Isometry3d RigFromObjcentre(int frame) const {
+    return truth[frame] * mesh.objcentre_from_template().inverse();
+  }
 };
+
+// The images of `frame` seen by the rig's cameras `cameras`, in that order.
+inline std::vector<cv::Mat3b> ReadFrameImages(const Sequence& sequence,
+                                              const std::vector<int>& cameras, int frame) {
+  std::vector<cv::Mat3b> images;
+  for (int c : cameras) images.emplace_back(cv::imread(sequence.image_paths[c][frame]));
+  return images;
+}
 
 inline std::string TruthPath(const std::string& dir) { return dir + "/gt/rig_from_object.txt"; }
 

@@ -32,7 +32,6 @@
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
@@ -186,10 +185,8 @@ int main(int argc, char** argv) {
         dir, name, [&](const std::string& out) { return Synthesize(*synth, out); });
     if (!loaded.ok()) return Fail(loaded.status());
     const Sequence* sequence = &loaded->sequence;
-    const std::vector<Eigen::Isometry3d>* truth = &loaded->truth;
     const Mesh* mesh = &loaded->mesh;
     const RayCaster caster(*mesh);
-    const Eigen::Isometry3d objcentre_from_template = mesh->objcentre_from_template();
     const Eigen::Isometry3d cam0_from_rig = sequence->rig[0].cam_from_rig;
 
     for (size_t column = 0; column < columns.size(); ++column) {
@@ -208,16 +205,11 @@ int main(int argc, char** argv) {
           MultiViewTracker::Create(caster, views, options->tracker);
       if (!tracker.ok()) return Fail(tracker.status());
       auto load_images = [&](int frame) {
-        std::vector<cv::Mat3b> images;
-        for (int c : cameras) images.emplace_back(cv::imread(sequence->image_paths[c][frame]));
-        return images;
-      };
-      auto objcentre = [&](const Eigen::Isometry3d& rig_from_object) {
-        return Eigen::Isometry3d(rig_from_object * objcentre_from_template.inverse());
+        return bench::ReadFrameImages(*sequence, cameras, frame);
       };
       Accumulator& acc = results[columns[column]];
       const Accumulator before = acc;
-      Eigen::Isometry3d rig_from_objcentre = objcentre((*truth)[0]);
+      Eigen::Isometry3d rig_from_objcentre = loaded->RigFromObjcentre(0);
       if (!(*tracker)->Reset(load_images(0), rig_from_objcentre).ok()) return 1;
       for (int frame = 1; frame < sequence->num_frames; ++frame) {
         const std::vector<cv::Mat3b> images = load_images(frame);
@@ -232,13 +224,13 @@ int main(int argc, char** argv) {
         ++acc.timed_frames;
         if (!summary.ok()) return Fail(summary.status());
         const Eigen::Isometry3d estimate = cam0_from_rig * rig_from_objcentre;
-        const Eigen::Isometry3d expected = cam0_from_rig * objcentre((*truth)[frame]);
+        const Eigen::Isometry3d expected = cam0_from_rig * loaded->RigFromObjcentre(frame);
         const double rotation = RotationDistanceDeg(estimate.linear(), expected.linear());
         const Eigen::Vector3d translation =
             (estimate.translation() - expected.translation()).cwiseAbs();
         if (rotation > 5.0 || translation.norm() > 50.0) {
           ++acc.lost;
-          rig_from_objcentre = objcentre((*truth)[frame]);
+          rig_from_objcentre = loaded->RigFromObjcentre(frame);
           if (!(*tracker)->Reset(images, rig_from_objcentre).ok()) return 1;
           continue;
         }
