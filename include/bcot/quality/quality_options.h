@@ -51,7 +51,7 @@ struct QualityOptions {
   // Smallest edge step in units of its profile fit's residual standard deviation; >= 0.
   double edge_min_snr = 4.0;
   // Bootstrap resamples of the contour points for the uncertainty σ of the judged statistic
-  // (statistic_sigma_px); 0 = none, else >= 2.
+  // (statistic_sigma_px; the fit's prediction σ is added to it); 0 = none, else >= 2.
   int bootstrap_resamples = 32;
   // A frame-view is bad when its statistic − confidence_z·σ exceeds threshold_px, good when its
   // statistic + confidence_z·σ does not, and cannot be told in between (the measurement cannot

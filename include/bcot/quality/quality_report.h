@@ -82,8 +82,9 @@ struct ViewFrameQuality {
   // The same statistics of the raw boundary offsets.
   double raw_median_px = 0.0;
   double raw_p90_px = 0.0;
-  // Standard deviation of the judged statistic (bootstrap over the usable points); NaN when not
-  // computed (bootstrap_resamples = 0, too few points).
+  // Standard deviation of the judged statistic (step 5: bootstrap over the usable points, when
+  // bootstrap_resamples > 0, and the fit's prediction σ); NaN without the rigid-motion fit or
+  // with fewer than 6 usable points.
   double statistic_sigma_px = 0.0;
   int points = 0;          // contour samples
   int found = 0;           // samples with a usable boundary
