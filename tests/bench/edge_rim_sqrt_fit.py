@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Refits the edge lines of `edge_bias_probe --dump` files with and without a √d rim term.
 
-Usage: edge_rim_sqrt_fit.py LINES DUMP [DUMP ...]
+Usage: edge_rim_sqrt_fit.py [--inside] LINES DUMP [DUMP ...]
 LINES lines are drawn at random from each dump (seed 0 for each). For each, the scalar profile is formed
 as the edge stage forms it (projection of the linear RGB samples on the contrast direction of
 the channels below 0.95, mean over s in [-4, -1] minus mean over [1, 4]) and fitted over
@@ -14,6 +14,11 @@ numerical Jacobian, two ways:
         as the square root of the distance to it, so a radiance smooth in the normal varies
         as sqrt(d) inside the edge. The grazing-angle sliver is then part of one ramp whose
         shape is fixed, rather than a free offset of the edge.
+With --inside the second model is instead
+  inside  a + b Phi(z) + g w (z Phi(z) + phi(z)) + c sqrt(w) H(z)
+        (no common linear trend: the inside varies as the blurred sqrt only, the outside
+        linearly), fitted over every sample from the inside end of the profile to mu0 + 2.5 px,
+        so the inside trend is read over 4 px rather than 2.5.
 Prints per camera and normal bin (up, down, left, right): the count and the mean and median mu
 (px, + = outside the true contour; the probe runs at the true pose) of the probe, M0 and sqrt.
 Not a test; numpy only, about 10 ms per line.
@@ -40,6 +45,8 @@ def model(p, s, mu0, with_sqrt):
     z = (s - mu) / w
     cdf = 0.5 * (1.0 + ERF(z / math.sqrt(2.0)))
     pdf = np.exp(-z * z / 2.0) / math.sqrt(2.0 * math.pi)
+    if with_sqrt == "inside":
+        return a + b * cdf + g * w * (z * cdf + pdf) + k * math.sqrt(w) * blurred_sqrt(z)
     value = a + g * (s - mu0) + b * cdf + k * w * (z * cdf + pdf)
     if with_sqrt:
         value = value + p[6] * math.sqrt(w) * blurred_sqrt(z)
@@ -50,7 +57,7 @@ def fit(s, y, mu0, with_sqrt):
     """Levenberg-Marquardt; the parameters, or None when mu or w leave their plausible range."""
     inside = y[s < mu0 - 0.5].mean() if np.any(s < mu0 - 0.5) else y[0]
     outside = y[s > mu0 + 0.5].mean() if np.any(s > mu0 + 0.5) else y[-1]
-    p = np.array([inside, 0.0, outside - inside, mu0, math.log(0.7), 0.0] + ([0.0] if with_sqrt else []))
+    p = np.array([inside, 0.0, outside - inside, mu0, math.log(0.7), 0.0] + ([0.0] if with_sqrt is True else []))
     damping = 1e-3
     r = model(p, s, mu0, with_sqrt) - y
     cost = r @ r
@@ -82,7 +89,7 @@ def fit(s, y, mu0, with_sqrt):
     return p
 
 
-def run(path, max_lines):
+def run(path, max_lines, inside_model):
     rng = np.random.default_rng(0)
     rows = [line.split() for line in open(path)]
     half = (len(rows[0]) - 9) // 3 // 2
@@ -101,7 +108,11 @@ def run(path, max_lines):
         mu0 = s[near][np.argmax(np.abs(np.gradient(y, s)[near]))]
         window = np.abs(s - mu0) <= 2.5
         plain = fit(s[window], y[window], mu0, False)
-        rim = fit(s[window], y[window], mu0, True)
+        if inside_model:
+            wide = s - mu0 <= 2.5
+            rim = fit(s[wide], y[wide], mu0, "inside")
+        else:
+            rim = fit(s[window], y[window], mu0, True)
         if plain is None or rim is None:
             continue
         results.setdefault((fields[0], fields[2]), []).append((float(fields[7]), plain[3], rim[3]))
@@ -109,14 +120,18 @@ def run(path, max_lines):
         v = np.array(values)
         print(f"{path} {camera} {direction:5s} n {len(v):4d} | "
               + " | ".join(f"{name} mean {v[:, c].mean():+.3f} median {np.median(v[:, c]):+.3f}"
-                           for c, name in enumerate(("probe", "M0", "sqrt"))))
+                           for c, name in enumerate(("probe", "M0", "inside" if inside_model else "sqrt"))))
 
 
 def main():
-    if len(sys.argv) < 3:
+    args = sys.argv[1:]
+    inside = bool(args) and args[0] == "--inside"
+    if inside:
+        args = args[1:]
+    if len(args) < 2:
         sys.exit(__doc__)
-    for path in sys.argv[2:]:
-        run(path, int(sys.argv[1]))
+    for path in args[1:]:
+        run(path, int(args[0]), inside)
 
 
 if __name__ == "__main__":
