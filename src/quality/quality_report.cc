@@ -127,13 +127,15 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
   quality.statistic_sigma_px = kNaN;
   if (options.fit_rigid_motion) {
     const RigidMotionFitter fitter(silhouette.contour, camera, cam_from_object, object_centre);
-    const std::vector<double> fitted = fitter.Fit(offsets, sigmas, options.fit_scale_px);
+    std::vector<double> weights;
+    const std::vector<double> fitted =
+        fitter.Fit(offsets, sigmas, options.fit_scale_px, /*multiplicity=*/{}, &weights);
     quality.median_px = AbsPercentile(fitted, 0.5);
     quality.p90_px = AbsPercentile(fitted, 0.9);
     // σ of the judged statistic: the spread of the usable points' own fit (bootstrap) and what
     // they cannot tell about the rest of the contour (prediction σ); independent, so in
     // quadrature.
-    const double prediction = fitter.PredictionSigmaPercentile(offsets, sigmas, fraction);
+    const double prediction = fitter.PredictionSigmaPercentile(weights, fraction);
     const double bootstrap =
         options.bootstrap_resamples > 0
             ? fitter.BootstrapPercentileSigma(offsets, sigmas, options.fit_scale_px, fraction,

@@ -34,7 +34,8 @@ RigidMotionFitter::RigidMotionFitter(const std::vector<ContourPoint>& contour, c
 
 std::vector<double> RigidMotionFitter::Fit(const std::vector<double>& offsets,
                                            const std::vector<double>& sigmas_px, double scale_px,
-                                           const std::vector<int>& multiplicity) const {
+                                           const std::vector<int>& multiplicity,
+                                           std::vector<double>* weights) const {
   const size_t n = static_cast<size_t>(rows_.rows());
   BCOT_CHECK(offsets.size() == n);
   BCOT_CHECK(sigmas_px.empty() || sigmas_px.size() == n);
@@ -52,10 +53,12 @@ std::vector<double> RigidMotionFitter::Fit(const std::vector<double>& offsets,
   // gives outliers (clutter edges, blur, highlights found instead of the boundary) no weight.
   Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
   int used = 0;
+  if (weights != nullptr) weights->assign(n, 0.0);
   for (int iteration = 0; iteration < 10; ++iteration) {
     Eigen::Matrix<double, 6, 6> normal = Eigen::Matrix<double, 6, 6>::Zero();
     Eigen::Matrix<double, 6, 1> rhs = Eigen::Matrix<double, 6, 1>::Zero();
     used = 0;
+    if (weights != nullptr) std::fill(weights->begin(), weights->end(), 0.0);
     for (size_t i = 0; i < n; ++i) {
       if (!std::isfinite(offsets[i])) continue;
       const double prior = prior_weight(i);
@@ -70,6 +73,7 @@ std::vector<double> RigidMotionFitter::Fit(const std::vector<double>& offsets,
       }
       if (weight <= 0) continue;
       weight *= prior;
+      if (weights != nullptr) (*weights)[i] = weight;
       normal += weight * rows_.row(i).transpose() * rows_.row(i);
       rhs += weight * offsets[i] * rows_.row(i).transpose();
       ++used;
@@ -115,19 +119,16 @@ double RigidMotionFitter::BootstrapPercentileSigma(const std::vector<double>& of
   return std::sqrt(std::max(0.0, (sum_squares - count * mean * mean) / (count - 1)));
 }
 
-double RigidMotionFitter::PredictionSigmaPercentile(const std::vector<double>& offsets,
-                                                    const std::vector<double>& sigmas_px,
+double RigidMotionFitter::PredictionSigmaPercentile(const std::vector<double>& weights,
                                                     double fraction) const {
   const size_t n = static_cast<size_t>(rows_.rows());
-  BCOT_CHECK(offsets.size() == n);
-  BCOT_CHECK(sigmas_px.empty() || sigmas_px.size() == n);
+  BCOT_CHECK(weights.size() == n);
   Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
   int used = 0;
   for (size_t i = 0; i < n; ++i) {
-    if (!std::isfinite(offsets[i])) continue;
-    const double sigma = sigmas_px.empty() ? 0.0 : sigmas_px[i];
+    if (!(weights[i] > 0.0)) continue;
     information +=
-        rows_.row(i).transpose() * rows_.row(i) / (sigma * sigma + kModelSigmaPx * kModelSigmaPx);
+        weights[i] / (kModelSigmaPx * kModelSigmaPx) * rows_.row(i).transpose() * rows_.row(i);
     ++used;
   }
   if (used < 6) return kNaN;

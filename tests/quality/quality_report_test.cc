@@ -207,10 +207,11 @@ TEST(QualityReportTest, RigidMotionFitIgnoresOutliersAndKeepsThePoseError) {
   EXPECT_TRUE(std::isnan(fitter.BootstrapPercentileSigma(observed, {}, 1.0, 0.9, 1, 5)));
 }
 
-// The prediction σ of the fitted offsets stays small while the points with an offset, however
+// The prediction σ of the fitted offsets stays small while the points the fit keeps, however
 // few, observe every motion of the contour, and becomes large where they leave one unobserved.
-// A square seen face-on moves 0.5 px right and 1 px down: with only its left and right sides
-// measured, nothing sees the vertical shift, and the fit (damped there) reports half the p90.
+// A square seen face-on moves 0.5 px right and 1 px down. With only its left and right sides
+// measured, nothing sees the vertical shift, and the fit (damped there) reports half the p90;
+// the same when the top and bottom found boundaries 4 px off, which the robust fit rejects.
 TEST(QualityReportTest, PredictionSigmaSeesWhatTheUsablePointsCannot) {
   const Camera camera("cam", 640, 512, 800, 800, 320, 256);
   const double depth_mm = 500.0;
@@ -234,26 +235,42 @@ TEST(QualityReportTest, PredictionSigmaSeesWhatTheUsablePointsCannot) {
                                  Eigen::Vector3d(0, 0, depth_mm));
   std::mt19937 random(3);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<double> truth, all, a_third, sides;
+  std::vector<double> truth, all, a_third, sides, wrong_top_bottom;
   const double nan = std::nan("");
   for (const ContourPoint& point : square) {
     truth.push_back(point.normal.dot(Eigen::Vector2d(0.5, 1.0)));
     all.push_back(truth.back() + 0.2 * (unit(random) - 0.5));
     a_third.push_back(unit(random) < 0.3 ? all.back() : nan);
-    sides.push_back(point.normal.y() == 0.0 ? all.back() : nan);
+    const bool on_a_side = point.normal.y() == 0.0;
+    sides.push_back(on_a_side ? all.back() : nan);
+    wrong_top_bottom.push_back(on_a_side ? all.back() : (unit(random) < 0.5 ? -4.0 : 4.0));
   }
   const std::vector<double> sigmas(square.size(), 0.1);
-  const double every_point = fitter.PredictionSigmaPercentile(all, sigmas, 0.9);
+  // The fit on `offsets`: its p90 and the prediction σ from its final weights.
+  auto fit = [&](const std::vector<double>& offsets) {
+    std::vector<double> weights;
+    const double p90 =
+        AbsPercentile(fitter.Fit(offsets, sigmas, /*scale_px=*/0.5, {}, &weights), 0.9);
+    EXPECT_EQ(weights.size(), square.size());
+    return std::make_pair(p90, fitter.PredictionSigmaPercentile(weights, 0.9));
+  };
+  const auto [every_point_p90, every_point] = fit(all);
+  EXPECT_NEAR(every_point_p90, 1.0, 0.05);
   EXPECT_GT(every_point, 0.0);
   EXPECT_LT(every_point, 0.05);
-  EXPECT_GT(fitter.PredictionSigmaPercentile(a_third, sigmas, 0.9), every_point);
-  EXPECT_LT(fitter.PredictionSigmaPercentile(a_third, sigmas, 0.9), 0.1);
-  EXPECT_NEAR(AbsPercentile(fitter.Fit(a_third, sigmas, 0.5), 0.9), 1.0, 0.1);
-  EXPECT_GT(fitter.PredictionSigmaPercentile(sides, sigmas, 0.9), 10.0);
-  EXPECT_NEAR(AbsPercentile(fitter.Fit(sides, sigmas, 0.5), 0.9), 0.5, 0.1);
-  std::vector<double> five(square.size(), nan);
-  for (size_t i = 0; i < 5; ++i) five[i] = all[i];
-  EXPECT_TRUE(std::isnan(fitter.PredictionSigmaPercentile(five, sigmas, 0.9)));
+  const auto [a_third_p90, a_third_sigma] = fit(a_third);
+  EXPECT_NEAR(a_third_p90, 1.0, 0.1);
+  EXPECT_GT(a_third_sigma, every_point);
+  EXPECT_LT(a_third_sigma, 0.1);
+  const auto [sides_p90, sides_sigma] = fit(sides);
+  EXPECT_NEAR(sides_p90, 0.5, 0.1);
+  EXPECT_GT(sides_sigma, 10.0);
+  const auto [rejected_p90, rejected_sigma] = fit(wrong_top_bottom);
+  EXPECT_NEAR(rejected_p90, 0.5, 0.1);
+  EXPECT_GT(rejected_sigma, 10.0);
+  std::vector<double> five(square.size(), 0.0);
+  for (size_t i = 0; i < 5; ++i) five[i] = 1.0;
+  EXPECT_TRUE(std::isnan(fitter.PredictionSigmaPercentile(five, 0.9)));
 }
 
 TEST(QualityReportTest, AbsPercentileIgnoresNaN) {
