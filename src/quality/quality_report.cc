@@ -133,8 +133,9 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
     quality.median_px = AbsPercentile(fitted, 0.5);
     quality.p90_px = AbsPercentile(fitted, 0.9);
     // σ of the judged statistic: the spread of the usable points' own fit (bootstrap) and what
-    // they cannot tell about the rest of the contour (prediction σ); independent, so in
-    // quadrature.
+    // they cannot tell about the rest of the contour (prediction σ), added in quadrature. The
+    // two overlap where the usable points observe every motion; there the prediction σ is
+    // small beside the bootstrap's (docs/quality.md, "Small objects").
     const double prediction = fitter.PredictionSigmaPercentile(weights, fraction);
     const double bootstrap =
         options.bootstrap_resamples > 0
