@@ -13,6 +13,12 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Standard deviation of the offset model itself (px): mesh facets, linearised projection.
 constexpr double kModelSigmaPx = 0.1;
 
+// Damps the directions of a 6×6 normal matrix that no point observes (depth, rotations that
+// slide the contour along itself), so it can be solved; they move no contour point.
+void DampUnobservedMotions(Eigen::Matrix<double, 6, 6>* normal) {
+  normal->diagonal().array() += 1e-9 * normal->trace() + 1e-12;
+}
+
 }  // namespace
 
 RigidMotionFitter::RigidMotionFitter(const std::vector<ContourPoint>& contour, const Camera& camera,
@@ -53,12 +59,11 @@ std::vector<double> RigidMotionFitter::Fit(const std::vector<double>& offsets,
   // gives outliers (clutter edges, blur, highlights found instead of the boundary) no weight.
   Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
   int used = 0;
-  if (weights != nullptr) weights->assign(n, 0.0);
   for (int iteration = 0; iteration < 10; ++iteration) {
     Eigen::Matrix<double, 6, 6> normal = Eigen::Matrix<double, 6, 6>::Zero();
     Eigen::Matrix<double, 6, 1> rhs = Eigen::Matrix<double, 6, 1>::Zero();
     used = 0;
-    if (weights != nullptr) std::fill(weights->begin(), weights->end(), 0.0);
+    if (weights != nullptr) weights->assign(n, 0.0);
     for (size_t i = 0; i < n; ++i) {
       if (!std::isfinite(offsets[i])) continue;
       const double prior = prior_weight(i);
@@ -79,9 +84,8 @@ std::vector<double> RigidMotionFitter::Fit(const std::vector<double>& offsets,
       ++used;
     }
     if (used < 6) break;
-    // Directions the contour does not observe (depth, rotations that slide the contour along
-    // itself) are damped to zero; they move no contour point, so the fitted offsets ignore them.
-    normal.diagonal().array() += 1e-9 * normal.trace() + 1e-12;
+    // Unobserved directions are damped to zero, so the fitted offsets ignore them.
+    DampUnobservedMotions(&normal);
     delta = normal.ldlt().solve(rhs);
   }
   std::vector<double> fitted(n, kNaN);
@@ -132,8 +136,7 @@ double RigidMotionFitter::PredictionSigmaPercentile(const std::vector<double>& w
     ++used;
   }
   if (used < 6) return kNaN;
-  // The fit's damping: directions no point observes stay finite (and move no contour point).
-  information.diagonal().array() += 1e-9 * information.trace() + 1e-12;
+  DampUnobservedMotions(&information);
   const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> covariance(information);
   std::vector<double> sigmas(n);
   for (size_t i = 0; i < n; ++i) {

@@ -216,11 +216,8 @@ TEST(QualityReportTest, PredictionSigmaSeesWhatTheUsablePointsCannot) {
   const Camera camera("cam", 640, 512, 800, 800, 320, 256);
   const double depth_mm = 500.0;
   std::vector<ContourPoint> square;
-  for (int side = 0; side < 4; ++side) {
-    const Eigen::Vector2d normal = side == 0   ? Eigen::Vector2d(-1, 0)
-                                   : side == 1 ? Eigen::Vector2d(1, 0)
-                                   : side == 2 ? Eigen::Vector2d(0, -1)
-                                               : Eigen::Vector2d(0, 1);
+  for (const Eigen::Vector2d& normal : {Eigen::Vector2d(-1, 0), Eigen::Vector2d(1, 0),
+                                        Eigen::Vector2d(0, -1), Eigen::Vector2d(0, 1)}) {
     const Eigen::Vector2d along(-normal.y(), normal.x());
     for (int k = -50; k < 50; ++k) {
       ContourPoint point;
