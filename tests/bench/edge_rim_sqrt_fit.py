@@ -28,6 +28,8 @@ import sys
 
 import numpy as np
 
+from edge_profile_refit import levenberg_marquardt, scalar_profile, start
+
 U = np.linspace(-8.0, 8.0, 4001)
 GAUSS = np.exp(-U**2 / 2.0) / math.sqrt(2.0 * math.pi)
 Z_GRID = np.linspace(-12.0, 12.0, 2401)
@@ -54,39 +56,9 @@ def model(p, s, mu0, with_sqrt):
 
 
 def fit(s, y, mu0, with_sqrt):
-    """Levenberg-Marquardt; the parameters, or None when mu or w leave their plausible range."""
-    inside = y[s < mu0 - 0.5].mean() if np.any(s < mu0 - 0.5) else y[0]
-    outside = y[s > mu0 + 0.5].mean() if np.any(s > mu0 + 0.5) else y[-1]
-    p = np.array([inside, 0.0, outside - inside, mu0, math.log(0.7), 0.0] + ([0.0] if with_sqrt is True else []))
-    damping = 1e-3
-    r = model(p, s, mu0, with_sqrt) - y
-    cost = r @ r
-    for _ in range(60):
-        jacobian = np.empty((len(s), len(p)))
-        for j in range(len(p)):
-            d = np.zeros_like(p)
-            d[j] = 1e-6
-            jacobian[:, j] = (model(p + d, s, mu0, with_sqrt) - model(p - d, s, mu0, with_sqrt)) / 2e-6
-        a = jacobian.T @ jacobian
-        gradient = jacobian.T @ r
-        step = np.zeros_like(p)
-        while damping <= 1e8:
-            step = np.linalg.solve(a + damping * np.diag(np.diag(a) + 1e-12), -gradient)
-            trial = p + step
-            if not -5.0 < trial[4] < 3.0:
-                damping *= 4.0
-                continue
-            r_trial = model(trial, s, mu0, with_sqrt) - y
-            if r_trial @ r_trial < cost:
-                p, r, cost = trial, r_trial, r_trial @ r_trial
-                damping = max(damping / 3.0, 1e-9)
-                break
-            damping *= 4.0
-        if damping > 1e8 or np.abs(step).max() < 1e-7:
-            break
-    if abs(p[3] - mu0) > 2.0 or not 0.2 < math.exp(p[4]) < 3.0:
-        return None
-    return p
+    """The parameters, or None when mu or w leave their plausible range."""
+    p = start(s, y, mu0, 1 if with_sqrt is True else 0)
+    return levenberg_marquardt(lambda q, x: model(q, x, mu0, with_sqrt), p, s, y, mu0)
 
 
 def run(path, max_lines, inside_model):
@@ -98,14 +70,10 @@ def run(path, max_lines, inside_model):
     for i in rng.permutation(len(rows))[:max_lines]:
         fields = rows[i]
         colors = np.array(fields[9:], float).reshape(-1, 3)
-        inside = colors[(s >= -4) & (s <= -1)].mean(0)
-        outside = colors[(s >= 1) & (s <= 4)].mean(0)
-        direction = (inside - outside) * (colors.max(0) < 0.95)
-        if np.linalg.norm(direction) < 1e-6:
+        profile = scalar_profile(colors, s)
+        if profile is None:
             continue
-        y = colors @ (direction / np.linalg.norm(direction))
-        near = np.abs(s) <= 2.0
-        mu0 = s[near][np.argmax(np.abs(np.gradient(y, s)[near]))]
+        y, mu0 = profile
         window = np.abs(s - mu0) <= 2.5
         plain = fit(s[window], y[window], mu0, False)
         if inside_model:
