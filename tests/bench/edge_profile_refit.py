@@ -61,3 +61,18 @@ def start(s, y, mu0, extra):
     inside = y[s < mu0 - 0.5].mean() if np.any(s < mu0 - 0.5) else y[0]
     outside = y[s > mu0 + 0.5].mean() if np.any(s > mu0 + 0.5) else y[-1]
     return np.array([inside, 0.0, outside - inside, mu0, math.log(0.7), 0.0] + [0.0] * extra)
+
+
+def print_bins(path, results, names):
+    """Per (camera, bin) of `results` (lists of per-line mu tuples named by `names`), the count
+    and the mean and median of each mu; then per camera the difference of the means up - down."""
+    for (camera, direction), values in sorted(results.items()):
+        v = np.array(values)
+        print(f"{path} {camera} {direction:5s} n {len(v):4d} | "
+              + " | ".join(f"{name} mean {v[:, c].mean():+.3f} median {np.median(v[:, c]):+.3f}"
+                           for c, name in enumerate(names)))
+    for camera in sorted({key[0] for key in results}):
+        if (camera, "up") in results and (camera, "down") in results:
+            up, down = np.array(results[(camera, "up")]), np.array(results[(camera, "down")])
+            print(f"{path} {camera} up - down: " + " ".join(
+                f"{name} {up[:, c].mean() - down[:, c].mean():+.3f}" for c, name in enumerate(names)))

@@ -16,12 +16,12 @@ edge_rim_sqrt_fit.py and fitted over |s - mu0| <= 2.5 px two ways:
 Prints per camera and normal bin the mean and median mu (px, + = outside the true contour) of
 the probe, M0 and rim, and per camera the difference up - down. Not a test; numpy only.
 """
+import argparse
 import math
-import sys
 
 import numpy as np
 
-from edge_profile_refit import levenberg_marquardt, scalar_profile, start
+from edge_profile_refit import levenberg_marquardt, print_bins, scalar_profile, start
 
 ERF = np.vectorize(math.erf)
 SAMPLES = 33  # the probe's profile: -4 ... +4 px every 0.25 px
@@ -76,28 +76,17 @@ def run(path, max_lines, exponent):
         if plain is None or rim is None:
             continue
         results.setdefault((fields[0], fields[2]), []).append((float(fields[7]), plain[3], rim[3]))
-    for (camera, direction), values in sorted(results.items()):
-        v = np.array(values)
-        print(f"{path} {camera} {direction:5s} n {len(v):4d} | "
-              + " | ".join(f"{name} mean {v[:, c].mean():+.3f} median {np.median(v[:, c]):+.3f}"
-                           for c, name in enumerate(("probe", "M0", "rim"))))
-    for camera in sorted({key[0] for key in results}):
-        if (camera, "up") in results and (camera, "down") in results:
-            up, down = np.array(results[(camera, "up")]), np.array(results[(camera, "down")])
-            print(f"{path} {camera} up - down: M0 {up[:, 1].mean() - down[:, 1].mean():+.3f} "
-                  f"rim {up[:, 2].mean() - down[:, 2].mean():+.3f}")
+    print_bins(path, results, ("probe", "M0", "rim"))
 
 
 def main():
-    args = sys.argv[1:]
-    exponent = 5.0
-    if args and args[0] == "--exponent":
-        exponent = float(args[1])
-        args = args[2:]
-    if len(args) < 2:
-        sys.exit(__doc__)
-    for path in args[1:]:
-        run(path, int(args[0]), exponent)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--exponent", type=float, default=5.0, help="of (1 - n.v)")
+    parser.add_argument("lines", type=int, help="lines drawn from each dump")
+    parser.add_argument("dumps", nargs="+")
+    args = parser.parse_args()
+    for path in args.dumps:
+        run(path, args.lines, args.exponent)
 
 
 if __name__ == "__main__":

@@ -20,7 +20,8 @@ With --inside the second model is instead
         linearly), fitted over every sample from the inside end of the profile to mu0 + 2.5 px,
         so the inside trend is read over 4 px rather than 2.5.
 Prints per camera and normal bin (up, down, left, right): the count and the mean and median mu
-(px, + = outside the true contour; the probe runs at the true pose) of the probe, M0 and sqrt.
+(px, + = outside the true contour; the probe runs at the true pose) of the probe, M0 and sqrt,
+and per camera the difference of the means up - down.
 Not a test; numpy only, about 10 ms per line.
 """
 import math
@@ -28,7 +29,7 @@ import sys
 
 import numpy as np
 
-from edge_profile_refit import levenberg_marquardt, scalar_profile, start
+from edge_profile_refit import levenberg_marquardt, print_bins, scalar_profile, start
 
 U = np.linspace(-8.0, 8.0, 4001)
 GAUSS = np.exp(-U**2 / 2.0) / math.sqrt(2.0 * math.pi)
@@ -84,11 +85,7 @@ def run(path, max_lines, inside_model):
         if plain is None or rim is None:
             continue
         results.setdefault((fields[0], fields[2]), []).append((float(fields[7]), plain[3], rim[3]))
-    for (camera, direction), values in sorted(results.items()):
-        v = np.array(values)
-        print(f"{path} {camera} {direction:5s} n {len(v):4d} | "
-              + " | ".join(f"{name} mean {v[:, c].mean():+.3f} median {np.median(v[:, c]):+.3f}"
-                           for c, name in enumerate(("probe", "M0", "inside" if inside_model else "sqrt"))))
+    print_bins(path, results, ("probe", "M0", "inside" if inside_model else "sqrt"))
 
 
 def main():
