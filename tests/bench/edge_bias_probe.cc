@@ -11,9 +11,13 @@
 // a difference between opposite bins (a shift) or from all bins together (a scale, i.e. depth).
 //
 // Usage: edge_bias_probe --sequence DIR [--config FILE] [--set key=value]... [--frames N]
-//                        [--dump FILE] [--dump-fits FILE]
+//                        [--dump FILE] [--dump-fits FILE] [--blur-exposure E]
 // --dump writes one line per measured edge line: camera, frame, bin, centre, normal, μ, σ, then
 // the linear RGB profile (window_px/step_px samples each side, R G B per sample).
+// --blur-exposure E (with --dump; frames 1 .. N−2): each dump line ends with "BLUR" and the
+// true contour's crossings of the line (px along the outward normal, nan when none) at 8 times
+// spread evenly over an exposure of E frames centred on the frame: what a motion-blurred image
+// averages (ContourCrossingsOverExposure).
 // --dump-fits writes one line per measured edge line: camera, frame, bin, then the profile fit's
 // μ, σ_μ (unfloored), blur width w (px) and step b (EdgeFit; FitEdgeAcross again on the line).
 // Prints per camera: lines measured / candidates, and per bin count, mean μ and its standard
@@ -25,6 +29,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -80,6 +85,56 @@ int Fail(const std::string& message) {
   return 1;
 }
 
+constexpr int kBlurSubframes = 8;
+
+// The true contour's crossings of a line (px along its outward normal from `centre`; NaN where
+// none lies within ±6 px) at kBlurSubframes times spread evenly over an exposure of `exposure`
+// frames centred on frame f (0 < f < N − 1). Over the exposure the object turns at the central
+// angular velocity of frames f − 1 .. f + 1 about its centre, which follows the parabola through
+// their centres. A crossing is found by ray casting every 0.25 px, then by bisection.
+std::array<double, kBlurSubframes> ContourCrossingsOverExposure(
+    const bcot::RayCaster& caster, const bcot::RigCamera& camera,
+    const bcot::bench::GroundTruthSequence& truth, int f, const Eigen::Vector2d& centre,
+    const Eigen::Vector2d& normal, double exposure) {
+  const Eigen::Isometry3d before = truth.RigFromObjcentre(f - 1);
+  const Eigen::Isometry3d now = truth.RigFromObjcentre(f);
+  const Eigen::Isometry3d after = truth.RigFromObjcentre(f + 1);
+  const Eigen::AngleAxisd turn(after.linear() * before.linear().transpose());
+  const Eigen::Vector3d velocity = 0.5 * (after.translation() - before.translation());
+  const Eigen::Vector3d acceleration =
+      after.translation() - 2.0 * now.translation() + before.translation();
+  std::array<double, kBlurSubframes> crossings{};
+  for (int j = 0; j < kBlurSubframes; ++j) {
+    const double tau = exposure * ((j + 0.5) / kBlurSubframes - 0.5);
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() =
+        Eigen::AngleAxisd(0.5 * tau * turn.angle(), turn.axis()).toRotationMatrix() * now.linear();
+    pose.translation() = now.translation() + tau * velocity + 0.5 * tau * tau * acceleration;
+    const Eigen::Isometry3d cam_from_template =
+        camera.cam_from_rig * pose * truth.mesh.objcentre_from_template();
+    const auto inside = [&](double t) {
+      return caster.Intersect(camera.camera, cam_from_template, centre + t * normal).has_value();
+    };
+    double nearest = std::numeric_limits<double>::quiet_NaN();
+    bool was_inside = inside(-6.0);
+    for (double t = -5.75; t <= 6.0 + 1e-9; t += 0.25) {
+      const bool is_inside = inside(t);
+      if (was_inside && !is_inside) {
+        double lo = t - 0.25, hi = t;
+        for (int b = 0; b < 7; ++b) {
+          const double mid = 0.5 * (lo + hi);
+          (inside(mid) ? lo : hi) = mid;
+        }
+        const double crossing = 0.5 * (lo + hi);
+        if (!(std::abs(crossing) >= std::abs(nearest))) nearest = crossing;
+      }
+      was_inside = is_inside;
+    }
+    crossings[j] = nearest;
+  }
+  return crossings;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -95,6 +150,10 @@ int main(int argc, char** argv) {
   app.add_option("--frames", max_frames, "Only the first N frames (0 = all)");
   app.add_option("--dump", dump_path, "Write every measured line's profile to this file");
   std::string fits_path;
+  double blur_exposure = 0.0;
+  app.add_option("--blur-exposure", blur_exposure,
+                 "With --dump: the true contour's crossings of each line over an exposure of "
+                 "this many frames (motion blur)");
   app.add_option("--dump-fits", fits_path, "Write every measured line's profile fit to this file");
   int response_frames = 0;
   app.add_option("--response-frames", response_frames,
@@ -205,6 +264,13 @@ int main(int argc, char** argv) {
           const Eigen::Vector3d rgb =
               SampleLinearRgb(*image, linear, line.centre + k * edge.step_px * line.normal);
           std::fprintf(dump, " %.4f %.4f %.4f", rgb.x(), rgb.y(), rgb.z());
+        }
+        if (blur_exposure > 0.0 && f > 0 && f + 1 < sequence->num_frames) {
+          std::fprintf(dump, " BLUR");
+          for (double crossing : ContourCrossingsOverExposure(
+                   caster, camera, *loaded, f, line.centre, line.normal, blur_exposure)) {
+            std::fprintf(dump, " %.3f", crossing);
+          }
         }
         std::fprintf(dump, "\n");
       }
