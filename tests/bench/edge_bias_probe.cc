@@ -149,11 +149,12 @@ int main(int argc, char** argv) {
   app.add_option("--set", overrides, "Override of the config (repeatable)");
   app.add_option("--frames", max_frames, "Only the first N frames (0 = all)");
   app.add_option("--dump", dump_path, "Write every measured line's profile to this file");
-  std::string fits_path;
   double blur_exposure = 0.0;
   app.add_option("--blur-exposure", blur_exposure,
                  "With --dump: the true contour's crossings of each line over an exposure of "
-                 "this many frames (motion blur)");
+                 "this many frames (motion blur)")
+      ->check(CLI::NonNegativeNumber);
+  std::string fits_path;
   app.add_option("--dump-fits", fits_path, "Write every measured line's profile fit to this file");
   int response_frames = 0;
   app.add_option("--response-frames", response_frames,
