@@ -152,8 +152,8 @@ int main(int argc, char** argv) {
   double blur_exposure = 0.0;
   app.add_option("--blur-exposure", blur_exposure,
                  "With --dump: the true contour's crossings of each line over an exposure of "
-                 "this many frames (motion blur)")
-      ->check(CLI::NonNegativeNumber);
+                 "this many frames (motion blur), at most 1")
+      ->check(CLI::Range(0.0, 1.0));
   std::string fits_path;
   app.add_option("--dump-fits", fits_path, "Write every measured line's profile fit to this file");
   int response_frames = 0;
