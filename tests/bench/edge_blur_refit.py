@@ -23,28 +23,10 @@ import math
 
 import numpy as np
 
-from edge_profile_refit import levenberg_marquardt, scalar_profile, start
+from edge_profile_refit import (S, SAMPLES, cdf, cdf_integral, edge_model, levenberg_marquardt,
+                                scalar_profile, start)
 
-ERF = np.vectorize(math.erf)
-SAMPLES = 33  # the probe's profile: -4 ... +4 px every 0.25 px
-S = (np.arange(SAMPLES) - SAMPLES // 2) * 0.25
 SMEAR_CLASSES = ((0.0, 0.5), (0.5, 1.0), (1.0, 2.0), (2.0, 99.0))
-
-
-def cdf(z):
-    return 0.5 * (1.0 + ERF(z / math.sqrt(2.0)))
-
-
-def ramp_integral(z):
-    """The integral of Phi: z Phi(z) + phi(z)."""
-    return z * cdf(z) + np.exp(-z * z / 2.0) / math.sqrt(2.0 * math.pi)
-
-
-def m0(p, s, mu0):
-    a, g, b, mu, log_w, k = p
-    w = math.exp(log_w)
-    z = (s - mu) / w
-    return a + g * (s - mu0) + b * cdf(z) + k * w * ramp_integral(z)
 
 
 def ramp(p, s, mu0, psf):
@@ -54,8 +36,17 @@ def ramp(p, s, mu0, psf):
     if box < 1e-6:
         step = cdf(z)
     else:  # the mean of Phi((s - mu - x)/W0) over x in [-L/2, L/2]
-        step = (ramp_integral(z + 0.5 * box / psf) - ramp_integral(z - 0.5 * box / psf)) * psf / box
-    return a + g * (s - mu0) + b * step + k * psf * ramp_integral(z)
+        step = (cdf_integral(z + 0.5 * box / psf) - cdf_integral(z - 0.5 * box / psf)) * psf / box
+    return a + g * (s - mu0) + b * step + k * psf * cdf_integral(z)
+
+
+def smear(fields):
+    """How far the true contour's crossing of a dump line moves over the exposure (px), or None
+    when the line has no finite crossings."""
+    if "BLUR" not in fields:
+        return None
+    crossings = np.array(fields[fields.index("BLUR") + 1:], float)
+    return abs(crossings[-1] - crossings[0]) if np.all(np.isfinite(crossings)) else None
 
 
 def run(path, max_lines, psf):
@@ -64,21 +55,19 @@ def run(path, max_lines, psf):
     results = []
     for i in rng.permutation(len(rows))[:max_lines]:
         fields = rows[i]
-        if "BLUR" not in fields:
-            continue
-        crossings = np.array(fields[fields.index("BLUR") + 1:], float)
-        if not np.all(np.isfinite(crossings)):
+        line_smear = smear(fields)
+        if line_smear is None:
             continue
         profile = scalar_profile(np.array(fields[9:9 + 3 * SAMPLES], float).reshape(-1, 3), S)
         if profile is None:
             continue
         y, mu0 = profile
         near, wide = np.abs(S - mu0) <= 2.5, np.abs(S - mu0) <= 4.0
-        plain = levenberg_marquardt(lambda q, x: m0(q, x, mu0), start(S[near], y[near], mu0, 0),
+        plain = levenberg_marquardt(lambda q, x: edge_model(q, x, mu0), start(S[near], y[near], mu0, 0),
                                     S[near], y[near], mu0)
         blurred = levenberg_marquardt(lambda q, x: ramp(q, x, mu0, psf),
                                       start(S[wide], y[wide], mu0, 0), S[wide], y[wide], mu0)
-        results.append((abs(crossings[-1] - crossings[0]), float(fields[7]),
+        results.append((line_smear, float(fields[7]),
                         plain[3] if plain is not None else np.nan,
                         blurred[3] if blurred is not None else np.nan))
     r = np.array(results)
@@ -101,11 +90,9 @@ def probe_only(path):
     rows = []
     for line in open(path):
         fields = line.split()
-        if "BLUR" not in fields:
-            continue
-        crossings = np.array(fields[fields.index("BLUR") + 1:], float)
-        if np.all(np.isfinite(crossings)):
-            rows.append((abs(crossings[-1] - crossings[0]), float(fields[7]), float(fields[8])))
+        line_smear = smear(fields)
+        if line_smear is not None:
+            rows.append((line_smear, float(fields[7]), float(fields[8])))
     r = np.array(rows)
     for low, high in classes:
         members = r[(r[:, 0] >= low) & (r[:, 0] < high)]
@@ -130,6 +117,7 @@ def main():
     else:
         for path in args.arguments[1:]:
             run(path, int(args.arguments[0]), args.psf)
+
 
 if __name__ == "__main__":
     main()

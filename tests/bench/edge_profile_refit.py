@@ -1,11 +1,35 @@
 """Shared parts of the numpy refits of `edge_bias_probe --dump` lines (edge_rim_*_fit.py).
 
-scalar_profile: the profile the edge stage fits, formed from a line's linear RGB samples.
-levenberg_marquardt: the fit of a profile model with a numerical Jacobian. Not a test.
+S: the probe's sample offsets; scalar_profile: the profile the edge stage fits, formed from a
+line's linear RGB samples; edge_model: that stage's model (M0); levenberg_marquardt: the fit of
+a profile model with a numerical Jacobian. Not a test.
 """
 import math
 
 import numpy as np
+
+ERF = np.vectorize(math.erf)
+SAMPLES = 33  # the probe's profile: -4 ... +4 px every 0.25 px
+S = (np.arange(SAMPLES) - SAMPLES // 2) * 0.25
+
+
+def cdf(z):
+    """Phi(z), the standard normal distribution function."""
+    return 0.5 * (1.0 + ERF(z / math.sqrt(2.0)))
+
+
+def cdf_integral(z):
+    """The integral of Phi: z Phi(z) + phi(z) (the Gaussian-blurred kink)."""
+    return z * cdf(z) + np.exp(-z * z / 2.0) / math.sqrt(2.0 * math.pi)
+
+
+def edge_model(p, s, mu0):
+    """M0 of edge_lines.h at p = (a, g, b, mu, log w, k, ...): a + g (s - mu0) + b Phi(z) +
+    k w R(z), z = (s - mu)/w; entries after the sixth are ignored."""
+    a, g, b, mu, log_w, k = p[:6]
+    w = math.exp(log_w)
+    z = (s - mu) / w
+    return a + g * (s - mu0) + b * cdf(z) + k * w * cdf_integral(z)
 
 
 def scalar_profile(colors, s):

@@ -21,27 +21,16 @@ import math
 
 import numpy as np
 
-from edge_profile_refit import levenberg_marquardt, print_bins, scalar_profile, start
-
-ERF = np.vectorize(math.erf)
-SAMPLES = 33  # the probe's profile: -4 ... +4 px every 0.25 px
-S = (np.arange(SAMPLES) - SAMPLES // 2) * 0.25
-
-
-def cdf(z):
-    return 0.5 * (1.0 + ERF(z / math.sqrt(2.0)))
-
+from edge_profile_refit import (S, SAMPLES, cdf, edge_model, levenberg_marquardt, print_bins,
+                                scalar_profile, start)
 
 def model(p, s, mu0, rim):
-    a, g, b, mu, log_w, k = p[:6]
-    w = math.exp(log_w)
-    z = (s - mu) / w
-    phi_z = cdf(z)
-    value = a + g * (s - mu0) + b * phi_z + k * w * (z * phi_z + np.exp(-z * z / 2.0) / math.sqrt(2.0 * math.pi))
+    value = edge_model(p, s, mu0)
     if rim is not None:
         # Sample u covers [u - 1/8, min(u + 1/8, 0)] of the rim; moved by mu and blurred, the
         # indicator of [lo, hi] is Phi((s - lo)/w) - Phi((s - hi)/w).
         centres, shape = rim
+        mu, w = p[3], math.exp(p[4])
         lo = centres - 0.125 + mu
         hi = np.minimum(centres + 0.125, 0.0) + mu
         blurred = cdf((s[:, None] - lo[None, :]) / w) - cdf((s[:, None] - hi[None, :]) / w)

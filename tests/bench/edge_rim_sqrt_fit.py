@@ -29,13 +29,13 @@ import sys
 
 import numpy as np
 
-from edge_profile_refit import levenberg_marquardt, print_bins, scalar_profile, start
+from edge_profile_refit import (cdf, cdf_integral, edge_model, levenberg_marquardt, print_bins,
+                                scalar_profile, start)
 
 U = np.linspace(-8.0, 8.0, 4001)
 GAUSS = np.exp(-U**2 / 2.0) / math.sqrt(2.0 * math.pi)
 Z_GRID = np.linspace(-12.0, 12.0, 2401)
 H_GRID = np.array([np.sum(np.sqrt(np.maximum(0.0, U - z)) * GAUSS) * (U[1] - U[0]) for z in Z_GRID])
-ERF = np.vectorize(math.erf)
 
 
 def blurred_sqrt(z):
@@ -43,16 +43,14 @@ def blurred_sqrt(z):
 
 
 def model(p, s, mu0, with_sqrt):
-    a, g, b, mu, log_w, k = p[:6]
-    w = math.exp(log_w)
-    z = (s - mu) / w
-    cdf = 0.5 * (1.0 + ERF(z / math.sqrt(2.0)))
-    pdf = np.exp(-z * z / 2.0) / math.sqrt(2.0 * math.pi)
+    w = math.exp(p[4])
     if with_sqrt == "inside":
-        return a + b * cdf + g * w * (z * cdf + pdf) + k * math.sqrt(w) * blurred_sqrt(z)
-    value = a + g * (s - mu0) + b * cdf + k * w * (z * cdf + pdf)
+        a, g, b, mu, _, k = p[:6]
+        z = (s - mu) / w
+        return a + b * cdf(z) + g * w * cdf_integral(z) + k * math.sqrt(w) * blurred_sqrt(z)
+    value = edge_model(p, s, mu0)
     if with_sqrt:
-        value = value + p[6] * math.sqrt(w) * blurred_sqrt(z)
+        value = value + p[6] * math.sqrt(w) * blurred_sqrt((s - p[3]) / w)
     return value
 
 
