@@ -63,8 +63,8 @@ def run(path, max_lines, psf):
             continue
         y, mu0 = profile
         near, wide = np.abs(S - mu0) <= 2.5, np.abs(S - mu0) <= 4.0
-        plain = levenberg_marquardt(lambda q, x: edge_model(q, x, mu0), start(S[near], y[near], mu0, 0),
-                                    S[near], y[near], mu0)
+        plain = levenberg_marquardt(lambda q, x: edge_model(q, x, mu0),
+                                    start(S[near], y[near], mu0, 0), S[near], y[near], mu0)
         blurred = levenberg_marquardt(lambda q, x: ramp(q, x, mu0, psf),
                                       start(S[wide], y[wide], mu0, 0), S[wide], y[wide], mu0)
         results.append((line_smear, float(fields[7]),

@@ -98,5 +98,6 @@ def print_bins(path, results, names):
     for camera in sorted({key[0] for key in results}):
         if (camera, "up") in results and (camera, "down") in results:
             up, down = np.array(results[(camera, "up")]), np.array(results[(camera, "down")])
-            print(f"{path} {camera} up - down: " + " ".join(
-                f"{name} {up[:, c].mean() - down[:, c].mean():+.3f}" for c, name in enumerate(names)))
+            differences = " ".join(f"{name} {up[:, c].mean() - down[:, c].mean():+.3f}"
+                                   for c, name in enumerate(names))
+            print(f"{path} {camera} up - down: {differences}")
