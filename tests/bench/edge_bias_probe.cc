@@ -17,7 +17,7 @@
 // --blur-exposure E (with --dump; frames 1 .. N−2): each dump line ends with "BLUR" and the
 // true contour's crossings of the line (px along the outward normal, nan when none) at 8 times
 // spread evenly over an exposure of E frames centred on the frame: what a motion-blurred image
-// averages (ContourCrossingsOverExposure).
+// averages (CamFromTemplateOverExposure, ContourCrossingsOverExposure).
 // --dump-fits writes one line per measured edge line: camera, frame, bin, then the profile fit's
 // μ, σ_μ (unfloored), blur width w (px) and step b (EdgeFit; FitEdgeAcross again on the line).
 // Prints per camera: lines measured / candidates, and per bin count, mean μ and its standard
@@ -30,6 +30,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -86,16 +87,15 @@ int Fail(const std::string& message) {
 }
 
 constexpr int kBlurSubframes = 8;
+using ExposurePoses = std::array<Eigen::Isometry3d, kBlurSubframes>;
 
-// The true contour's crossings of a line (px along its outward normal from `centre`; NaN where
-// none lies within ±6 px) at kBlurSubframes times spread evenly over an exposure of `exposure`
-// frames centred on frame f (0 < f < N − 1). Over the exposure the object turns at the central
-// angular velocity of frames f − 1 .. f + 1 about its centre, which follows the parabola through
-// their centres. A crossing is found by ray casting every 0.25 px, then by bisection.
-std::array<double, kBlurSubframes> ContourCrossingsOverExposure(
-    const bcot::RayCaster& caster, const bcot::RigCamera& camera,
-    const bcot::bench::GroundTruthSequence& truth, int f, const Eigen::Vector2d& centre,
-    const Eigen::Vector2d& normal, double exposure) {
+// cam_from_template of the true pose at kBlurSubframes times spread evenly over an exposure of
+// `exposure` frames centred on frame f (0 < f < N − 1). Over the exposure the object turns at
+// the central angular velocity of frames f − 1 .. f + 1 about its centre, which follows the
+// parabola through their centres.
+ExposurePoses CamFromTemplateOverExposure(const Eigen::Isometry3d& cam_from_rig,
+                                          const bcot::bench::GroundTruthSequence& truth, int f,
+                                          double exposure) {
   const Eigen::Isometry3d before = truth.RigFromObjcentre(f - 1);
   const Eigen::Isometry3d now = truth.RigFromObjcentre(f);
   const Eigen::Isometry3d after = truth.RigFromObjcentre(f + 1);
@@ -103,34 +103,53 @@ std::array<double, kBlurSubframes> ContourCrossingsOverExposure(
   const Eigen::Vector3d velocity = 0.5 * (after.translation() - before.translation());
   const Eigen::Vector3d acceleration =
       after.translation() - 2.0 * now.translation() + before.translation();
-  std::array<double, kBlurSubframes> crossings{};
+  ExposurePoses poses;
   for (int j = 0; j < kBlurSubframes; ++j) {
     const double tau = exposure * ((j + 0.5) / kBlurSubframes - 0.5);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.linear() =
         Eigen::AngleAxisd(0.5 * tau * turn.angle(), turn.axis()).toRotationMatrix() * now.linear();
     pose.translation() = now.translation() + tau * velocity + 0.5 * tau * tau * acceleration;
-    const Eigen::Isometry3d cam_from_template =
-        camera.cam_from_rig * pose * truth.mesh.objcentre_from_template();
-    const auto inside = [&](double t) {
-      return caster.Intersect(camera.camera, cam_from_template, centre + t * normal).has_value();
-    };
-    double nearest = std::numeric_limits<double>::quiet_NaN();
-    bool was_inside = inside(-6.0);
-    for (double t = -5.75; t <= 6.0 + 1e-9; t += 0.25) {
-      const bool is_inside = inside(t);
-      if (was_inside && !is_inside) {
-        double lo = t - 0.25, hi = t;
-        for (int b = 0; b < 7; ++b) {
-          const double mid = 0.5 * (lo + hi);
-          (inside(mid) ? lo : hi) = mid;
-        }
-        const double crossing = 0.5 * (lo + hi);
-        if (!(std::abs(crossing) >= std::abs(nearest))) nearest = crossing;
+    poses[j] = cam_from_rig * pose * truth.mesh.objcentre_from_template();
+  }
+  return poses;
+}
+
+// The contour's crossing (inside → outside) of a line nearest to its centre, px along the
+// outward normal, NaN when none lies within ±6 px: `inside(t)` sampled every 0.25 px, then
+// bisected.
+template <typename Inside>
+double NearestCrossing(const Inside& inside) {
+  double nearest = std::numeric_limits<double>::quiet_NaN();
+  bool was_inside = inside(-6.0);
+  for (double t = -5.75; t <= 6.0 + 1e-9; t += 0.25) {
+    const bool is_inside = inside(t);
+    if (was_inside && !is_inside) {
+      double lo = t - 0.25, hi = t;
+      for (int b = 0; b < 7; ++b) {
+        const double mid = 0.5 * (lo + hi);
+        (inside(mid) ? lo : hi) = mid;
       }
-      was_inside = is_inside;
+      const double crossing = 0.5 * (lo + hi);
+      if (!(std::abs(crossing) >= std::abs(nearest))) nearest = crossing;
     }
-    crossings[j] = nearest;
+    was_inside = is_inside;
+  }
+  return nearest;
+}
+
+// The true contour's crossings of a line (centre, outward normal) at the exposure's times, by
+// ray casting.
+std::array<double, kBlurSubframes> ContourCrossingsOverExposure(const bcot::RayCaster& caster,
+                                                                const bcot::Camera& camera,
+                                                                const ExposurePoses& poses,
+                                                                const Eigen::Vector2d& centre,
+                                                                const Eigen::Vector2d& normal) {
+  std::array<double, kBlurSubframes> crossings{};
+  for (int j = 0; j < kBlurSubframes; ++j) {
+    crossings[j] = NearestCrossing([&](double t) {
+      return caster.Intersect(camera, poses[j], centre + t * normal).has_value();
+    });
   }
   return crossings;
 }
@@ -240,6 +259,11 @@ int main(int argc, char** argv) {
       const StatusOr<cv::Mat3b> image = ReadCameraImage(sequence->image_paths[v][f], camera.camera);
       if (!image.ok()) return Fail(image.status().message());
       const Eigen::Isometry3d rig_from_objcentre = loaded->RigFromObjcentre(f);
+      std::optional<ExposurePoses> exposure_poses;
+      if (dump != nullptr && blur_exposure > 0.0 && f > 0 && f + 1 < sequence->num_frames) {
+        exposure_poses =
+            CamFromTemplateOverExposure(camera.cam_from_rig, *loaded, f, blur_exposure);
+      }
       const Silhouette silhouette =
           RenderSilhouette(caster, camera.camera, camera.cam_from_rig * (*gt)[f], ContourOptions{});
       const StatusOr<CorrespondenceLines> lines = BuildEdgeLines(
@@ -266,10 +290,10 @@ int main(int argc, char** argv) {
               SampleLinearRgb(*image, linear, line.centre + k * edge.step_px * line.normal);
           std::fprintf(dump, " %.4f %.4f %.4f", rgb.x(), rgb.y(), rgb.z());
         }
-        if (blur_exposure > 0.0 && f > 0 && f + 1 < sequence->num_frames) {
+        if (exposure_poses.has_value()) {
           std::fprintf(dump, " BLUR");
           for (double crossing : ContourCrossingsOverExposure(
-                   caster, camera, *loaded, f, line.centre, line.normal, blur_exposure)) {
+                   caster, camera.camera, *exposure_poses, line.centre, line.normal)) {
             std::fprintf(dump, " %.3f", crossing);
           }
         }
