@@ -38,6 +38,7 @@
 #include "bcot/core/image_io.h"
 #include "bcot/core/linear_rgb.h"
 #include "bcot/core/pose_io.h"
+#include "bcot/core/se3.h"
 #include "bcot/core/sequence.h"
 #include "bcot/optim/edge_lines.h"
 #include "bcot/optim/frame_problem.h"
@@ -99,7 +100,7 @@ ExposurePoses CamFromTemplateOverExposure(const Eigen::Isometry3d& cam_from_rig,
   const Eigen::Isometry3d before = truth.RigFromObjcentre(f - 1);
   const Eigen::Isometry3d now = truth.RigFromObjcentre(f);
   const Eigen::Isometry3d after = truth.RigFromObjcentre(f + 1);
-  const Eigen::AngleAxisd turn(after.linear() * before.linear().transpose());
+  const Eigen::Vector3d spin = 0.5 * bcot::LogSO3(after.linear() * before.linear().transpose());
   const Eigen::Vector3d velocity = 0.5 * (after.translation() - before.translation());
   const Eigen::Vector3d acceleration =
       after.translation() - 2.0 * now.translation() + before.translation();
@@ -107,8 +108,7 @@ ExposurePoses CamFromTemplateOverExposure(const Eigen::Isometry3d& cam_from_rig,
   for (int j = 0; j < kBlurSubframes; ++j) {
     const double tau = exposure * ((j + 0.5) / kBlurSubframes - 0.5);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() =
-        Eigen::AngleAxisd(0.5 * tau * turn.angle(), turn.axis()).toRotationMatrix() * now.linear();
+    pose.linear() = bcot::ExpSO3(tau * spin) * now.linear();
     pose.translation() = now.translation() + tau * velocity + 0.5 * tau * tau * acceleration;
     poses[j] = cam_from_rig * pose * truth.mesh.objcentre_from_template();
   }
