@@ -11,6 +11,24 @@
 
 namespace bcot::test {
 
+// Axis-aligned box with half sides `half` (mm; a cube when all equal), centred at the origin.
+inline Mesh MakeBox(const Eigen::Vector3d& half) {
+  std::vector<Eigen::Vector3f> vertices;
+  for (int i = 0; i < 8; ++i) {
+    vertices.emplace_back((i & 1) ? half.x() : -half.x(), (i & 2) ? half.y() : -half.y(),
+                          (i & 4) ? half.z() : -half.z());
+  }
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  std::vector<Eigen::Vector3i> triangles;
+  for (const auto& q : quads) {
+    triangles.emplace_back(q[0], q[1], q[2]);
+    triangles.emplace_back(q[0], q[2], q[3]);
+  }
+  return Mesh::FromArrays(std::move(vertices), std::move(triangles));
+}
+inline Mesh MakeBox(double half) { return MakeBox(Eigen::Vector3d::Constant(half)); }
+
 // Torus around the z axis: tube centre circle radius `major`, tube radius `minor` (mm),
 // `segments_u` × `segments_v` quads (2·u·v triangles).
 inline Mesh MakeTorus(double major, double minor, int segments_u, int segments_v) {

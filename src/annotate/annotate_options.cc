@@ -198,6 +198,10 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "at most this many edge lines per view")
       .Range(AtLeast(1));
   s->Add(
+      "edge.occlusion_contours",
+      [](auto& o) -> auto& { return o.tracker.frame.edge.lines.occlusion_contours; }, "",
+      "also measure edges along the occlusion contours inside the silhouette");
+  s->Add(
        "edge.search_px", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.search_px; },
        "px", "the edge is looked for within this distance of the contour")
       .Range(Positive());

@@ -189,13 +189,13 @@ bool ContourDistribution(const std::vector<double>& p_foreground, double first_o
 
 LineAnchors::LineAnchors(const RayCaster& caster, const Camera& camera,
                          const Eigen::Isometry3d& cam_from_rig,
-                         const Eigen::Isometry3d& rig_from_objcentre, const Silhouette& silhouette,
-                         int num_lines)
+                         const Eigen::Isometry3d& rig_from_objcentre,
+                         const std::vector<ContourPoint>& contour, int num_lines)
     : camera_(camera),
-      contour_(silhouette.contour),
+      contour_(contour),
       objcentre_from_template_(caster.mesh().objcentre_from_template()),
       cam_from_objcentre_(cam_from_rig * rig_from_objcentre),
-      size_(std::min(num_lines, static_cast<int>(silhouette.contour.size()))) {}
+      size_(std::min(num_lines, static_cast<int>(contour.size()))) {}
 
 const ContourPoint& LineAnchors::point(int j) const {
   BCOT_CHECK(j >= 0 && j < size_);

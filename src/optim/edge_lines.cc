@@ -318,6 +318,65 @@ int NumEdgeLines(const std::vector<ContourPoint>& contour, const EdgeLineOptions
   return NumEdgeLinesForLength(TracedContourLengthPx(contour), options);
 }
 
+namespace {
+
+// Where a line's window must lie on the rendered mask at T0: inside over [−window, −1] and
+// outside over [1, window] across the silhouette; inside throughout across an occlusion contour,
+// whose far side is the object too.
+enum class WindowOnMask { kInsideThenOutside, kInsideThroughout };
+
+bool WindowIsClean(const cv::Mat1b& mask, const ContourPoint& point, double window_px,
+                   WindowOnMask rule) {
+  for (double t = 1.0; t <= window_px + 1e-9; t += 0.5) {
+    for (int side = -1; side <= 1; side += 2) {
+      const Eigen::Vector2d q = point.pixel + side * t * point.normal;
+      const bool in =
+          mask(static_cast<int>(std::lround(q.y())), static_cast<int>(std::lround(q.x()))) != 0;
+      if (in != (side < 0 || rule == WindowOnMask::kInsideThroughout)) return false;
+    }
+  }
+  return true;
+}
+
+// Measures the edge across every candidate of `anchors` whose window lies on the image and on
+// the mask by `rule`, appending the lines found to `result` and counting the others.
+void MeasureEdgeLines(const LineAnchors& anchors, WindowOnMask rule, const cv::Mat3b& image,
+                      const LinearTable& table, const cv::Mat1b& mask,
+                      const EdgeLineOptions& options, CorrespondenceLines* result) {
+  const double h = options.step_px;
+  const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
+  for (int j = 0; j < anchors.size(); ++j) {
+    const ContourPoint& point = anchors.point(j);
+    ++result->candidates;
+    const Eigen::Vector2d first = point.pixel - half * h * point.normal;
+    const Eigen::Vector2d last = point.pixel + half * h * point.normal;
+    if (!CanSampleBilinear(image.size(), first) || !CanSampleBilinear(image.size(), last)) {
+      ++result->rejected_off_image;
+      continue;
+    }
+    if (!WindowIsClean(mask, point, options.window_px, rule)) {
+      ++result->rejected_short;
+      continue;
+    }
+    CorrespondenceLine line;
+    if (!anchors.Anchor(j, &line)) {
+      ++result->rejected_off_image;
+      continue;
+    }
+    EdgeFit fit;
+    if (FitEdgeAcross(image, table, point.pixel, point.normal, options, &fit) !=
+        EdgeAcross::kFound) {
+      ++result->rejected_ambiguous;  // off-image windows were rejected above
+      continue;
+    }
+    line.mean_px = fit.mean_px;
+    line.sigma_px = std::max(fit.sigma_px, options.min_sigma_px);
+    result->lines.push_back(line);
+  }
+}
+
+}  // namespace
+
 StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Camera& camera,
                                              const Eigen::Isometry3d& cam_from_rig,
                                              const Eigen::Isometry3d& rig_from_objcentre,
@@ -335,47 +394,17 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
       caster, camera, cam_from_rig, rig_from_objcentre, silhouette,
       silhouette.contour.empty() ? 0 : NumEdgeLinesForLength(length_px, options));
   if (anchors.size() > 0) result.line_spacing_px = length_px / anchors.size();
-  const double h = options.step_px;
-  const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
-  const cv::Mat1b& mask = silhouette.mask;
   const LinearTable table(options.response);
-  for (int j = 0; j < anchors.size(); ++j) {
-    const ContourPoint& point = anchors.point(j);
-    ++result.candidates;
-    const Eigen::Vector2d first = point.pixel - half * h * point.normal;
-    const Eigen::Vector2d last = point.pixel + half * h * point.normal;
-    if (!CanSampleBilinear(image.size(), first) || !CanSampleBilinear(image.size(), last)) {
-      ++result.rejected_off_image;
-      continue;
-    }
-    // The mask must be inside on the inner part and outside on the outer part of the window.
-    bool clean = true;
-    for (double t = 1.0; t <= options.window_px + 1e-9 && clean; t += 0.5) {
-      for (int side = -1; side <= 1; side += 2) {
-        const Eigen::Vector2d q = point.pixel + side * t * point.normal;
-        const bool in =
-            mask(static_cast<int>(std::lround(q.y())), static_cast<int>(std::lround(q.x()))) != 0;
-        if (in != (side < 0)) clean = false;
-      }
-    }
-    if (!clean) {
-      ++result.rejected_short;
-      continue;
-    }
-    CorrespondenceLine line;
-    if (!anchors.Anchor(j, &line)) {
-      ++result.rejected_off_image;
-      continue;
-    }
-    EdgeFit fit;
-    if (FitEdgeAcross(image, table, point.pixel, point.normal, options, &fit) !=
-        EdgeAcross::kFound) {
-      ++result.rejected_ambiguous;  // off-image windows were rejected above
-      continue;
-    }
-    line.mean_px = fit.mean_px;
-    line.sigma_px = std::max(fit.sigma_px, options.min_sigma_px);
-    result.lines.push_back(line);
+  MeasureEdgeLines(anchors, WindowOnMask::kInsideThenOutside, image, table, silhouette.mask,
+                   options, &result);
+  if (options.occlusion_contours) {
+    const std::vector<ContourPoint> occlusion_contour = ExtractOcclusionContour(
+        caster, camera,
+        cam_from_rig * rig_from_objcentre * caster.mesh().objcentre_from_template());
+    const LineAnchors occlusion_anchors(caster, camera, cam_from_rig, rig_from_objcentre,
+                                        occlusion_contour, options.num_lines);
+    MeasureEdgeLines(occlusion_anchors, WindowOnMask::kInsideThroughout, image, table,
+                     silhouette.mask, options, &result);
   }
   return result;
 }

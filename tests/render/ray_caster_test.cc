@@ -94,22 +94,6 @@ double InscribedRadius(const Mesh& mesh) {
   return radius;
 }
 
-// Axis-aligned box with half sides `half` (mm), centred at the origin.
-Mesh MakeBox(double half) {
-  std::vector<Eigen::Vector3f> vertices;
-  for (int i = 0; i < 8; ++i) {
-    vertices.emplace_back((i & 1) ? half : -half, (i & 2) ? half : -half, (i & 4) ? half : -half);
-  }
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  std::vector<Eigen::Vector3i> triangles;
-  for (const auto& q : quads) {
-    triangles.emplace_back(q[0], q[1], q[2]);
-    triangles.emplace_back(q[0], q[2], q[3]);
-  }
-  return Mesh::FromArrays(std::move(vertices), std::move(triangles));
-}
-
 // A closed square frame in the xy plane: outer half side `outer`, square hole of half side
 // `inner`, thickness 2·`half_thickness` along z. Watertight (16 vertices, 32 triangles).
 Mesh MakeSquareFrame(double outer, double inner, double half_thickness) {
@@ -136,6 +120,7 @@ Mesh MakeSquareFrame(double outer, double inner, double half_thickness) {
   return Mesh::FromArrays(std::move(vertices), std::move(triangles));
 }
 
+using test::MakeBox;
 using test::MakeTorus;
 
 Mesh SpoolMesh() {

@@ -108,6 +108,12 @@ class LineAnchors {
  public:
   LineAnchors(const RayCaster& caster, const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
               const Eigen::Isometry3d& rig_from_objcentre, const Silhouette& silhouette,
+              int num_lines)
+      : LineAnchors(caster, camera, cam_from_rig, rig_from_objcentre, silhouette.contour,
+                    num_lines) {}
+  // The same along any samples with model points (`contour` must outlive the anchors).
+  LineAnchors(const RayCaster& caster, const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
+              const Eigen::Isometry3d& rig_from_objcentre, const std::vector<ContourPoint>& contour,
               int num_lines);
   int size() const { return size_; }
   // The contour sample of candidate j, 0 <= j < size().

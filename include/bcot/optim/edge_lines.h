@@ -58,6 +58,7 @@
 #include "bcot/core/status.h"
 #include "bcot/optim/correspondence_lines.h"
 #include "bcot/optim/silhouette.h"
+#include "bcot/render/occlusion_contour.h"
 #include "bcot/render/ray_caster.h"
 
 namespace bcot {
@@ -92,6 +93,9 @@ struct EdgeLineOptions {
   double clip_level = 0.95;
   // How the images' 8-bit codes map to linear light: the camera's response (linear_rgb.h).
   ImageResponse response;
+  // Also measure the edges along the occlusion contours inside the silhouette
+  // (occlusion_contour.h), at most num_lines of them, whose window lies on the object.
+  bool occlusion_contours = false;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
