@@ -8,7 +8,7 @@
 #include <string>
 
 #include "bcot/core/se3.h"
-#include "violations.h"
+#include "bcot/core/violations.h"
 
 namespace bcot {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "violations.h"
+#include "bcot/core/violations.h"
 
 namespace bcot {
 namespace {

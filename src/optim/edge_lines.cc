@@ -8,7 +8,7 @@
 #include <string>
 
 #include "bcot/core/linear_rgb.h"
-#include "violations.h"
+#include "bcot/core/violations.h"
 
 namespace bcot {
 

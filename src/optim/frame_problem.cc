@@ -19,7 +19,7 @@
 #include "bcot/optim/pose_damping_cost.h"
 #include "bcot/optim/se3_manifold.h"
 #include "bcot/optim/silhouette.h"
-#include "violations.h"
+#include "bcot/core/violations.h"
 
 namespace bcot {
 

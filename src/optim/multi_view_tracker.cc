@@ -9,7 +9,7 @@
 
 #include "bcot/core/se3.h"
 #include "bcot/optim/silhouette.h"
-#include "violations.h"
+#include "bcot/core/violations.h"
 
 namespace bcot {
 

@@ -9,7 +9,7 @@
 #include "bcot/core/se3.h"
 #include "bcot/optim/projected_point_cost.h"
 #include "bcot/optim/se3_manifold.h"
-#include "violations.h"
+#include "bcot/core/violations.h"
 
 namespace bcot {
 

@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "violations.h"
+#include "bcot/core/violations.h"
 
 namespace bcot {
 

@@ -14,7 +14,7 @@
 #include "bcot/core/se3.h"
 #include "bcot/optim/edge_lines.h"
 #include "bcot/optim/silhouette.h"
-#include "violations.h"
+#include "bcot/core/violations.h"
 
 namespace bcot {
 namespace {

@@ -17,7 +17,7 @@
 #include "bcot/optim/pose_gaussian_cost.h"
 #include "bcot/optim/region_cost.h"
 #include "bcot/optim/se3_manifold.h"
-#include "violations.h"
+#include "bcot/core/violations.h"
 
 namespace bcot {
 namespace {

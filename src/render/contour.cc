@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bcot/core/violations.h"
 #include "bcot/render/ray_caster.h"
 #include "ray_caster_internal.h"
 
@@ -31,10 +32,7 @@ Status ContourOptions::Validate() const {
   if (margin_px < 0) {
     violations.push_back(fmt::format("margin_px = {}, must be >= 0", margin_px));
   }
-  if (violations.empty()) return Status::Ok();
-  std::string message = "contour: " + violations[0];
-  for (size_t i = 1; i < violations.size(); ++i) message += "; " + violations[i];
-  return Status::InvalidConfig(message);
+  return internal::JoinViolations("contour", violations);
 }
 
 namespace {

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "bcot/core/status.h"
+#include "bcot/core/violations.h"
 
 namespace bcot {
 
@@ -21,10 +21,7 @@ Status OcclusionContourOptions::Validate() const {
   if (!(precision_px >= 1e-6 && precision_px <= 0.5)) {
     violations.push_back(fmt::format("precision_px = {}, must be in [1e-6, 0.5]", precision_px));
   }
-  if (violations.empty()) return Status::Ok();
-  std::string message = "occlusion contour: " + violations[0];
-  for (size_t i = 1; i < violations.size(); ++i) message += "; " + violations[i];
-  return Status::InvalidConfig(message);
+  return internal::JoinViolations("occlusion contour", violations);
 }
 
 namespace {

@@ -1,5 +1,5 @@
-// Joins option violations into one kInvalidConfig status ("context: a; b; c"). Internal to
-// the optim layer.
+// Joins option violations into one kInvalidConfig status ("context: a; b; c"), for the
+// Validate() of option structs.
 #pragma once
 
 #include <string>
