@@ -9,6 +9,7 @@
 
 #include "bcot/core/linear_rgb.h"
 #include "bcot/core/violations.h"
+#include "bcot/render/occlusion_contour.h"
 
 namespace bcot {
 

@@ -70,10 +70,9 @@ std::vector<ContourPoint> ExtractOcclusionContour(const RayCaster& caster, const
   if (view.depth.empty()) return points;
   const DepthImage depth(view);
   // Depth of the closest hit through `pixel`; +inf on a miss (background behind a gap).
-  auto hit_depth = [&](const Eigen::Vector2d& pixel, std::optional<Eigen::Vector3d>* hit) {
-    *hit = caster.Intersect(camera, cam_from_object, pixel);
-    return hit->has_value() ? (cam_from_object * **hit).z()
-                            : std::numeric_limits<double>::infinity();
+  auto hit_depth = [&](const Eigen::Vector2d& pixel) {
+    const std::optional<Eigen::Vector3d> hit = caster.Intersect(camera, cam_from_object, pixel);
+    return hit.has_value() ? (cam_from_object * *hit).z() : std::numeric_limits<double>::infinity();
   };
   for (int axis = 0; axis < 2; ++axis) {
     const int dx = axis == 0 ? 1 : 0;
@@ -94,33 +93,34 @@ std::vector<ContourPoint> ExtractOcclusionContour(const RayCaster& caster, const
         // an ever smaller bracket, a steep but continuous surface does not.
         Eigen::Vector2d a(view.roi.x + col, view.roi.y + row);
         Eigen::Vector2d b = a + Eigen::Vector2d(dx, dy);
-        std::optional<Eigen::Vector3d> hit_a, hit_b, hit_mid;
-        double z_a = hit_depth(a, &hit_a), z_b = hit_depth(b, &hit_b);
-        if (!hit_a.has_value() || !hit_b.has_value()) continue;
+        double z_a = hit_depth(a), z_b = hit_depth(b);
+        if (std::isinf(z_a) || std::isinf(z_b)) continue;
         while ((b - a).norm() > options.precision_px) {
           const Eigen::Vector2d mid = 0.5 * (a + b);
-          const double z_mid = hit_depth(mid, &hit_mid);
+          const double z_mid = hit_depth(mid);
           if (std::abs(z_mid - z_a) > std::abs(z_b - z_mid)) {
             b = mid;
             z_b = z_mid;
-            hit_b = hit_mid;
           } else {
             a = mid;
             z_a = z_mid;
-            hit_a = hit_mid;
           }
         }
         // A bracket ending on a miss is the boundary of a hole: the silhouette contour's.
-        if (!hit_a.has_value() || !hit_b.has_value()) continue;
-        const double nearer = std::min(z_a, z_b);
+        if (std::isinf(z_a) || std::isinf(z_b)) continue;
         const double step = std::abs(z_b - z_a);
-        if (!(step >= kRetainedJump * jump) || step < options.min_jump_fraction * nearer) continue;
-        const bool a_near = z_a < z_b;
+        if (!(step >= kRetainedJump * jump) ||
+            step < options.min_jump_fraction * std::min(z_a, z_b)) {
+          continue;
+        }
+        const Eigen::Vector2d near_end = z_a < z_b ? a : b;
+        const Eigen::Vector2d far_end = z_a < z_b ? b : a;
         ContourPoint point;
         point.pixel = 0.5 * (a + b);
         point.normal = gradient.normalized();
-        if (point.normal.dot(a_near ? b - a : a - b) < 0.0) point.normal = -point.normal;
-        point.point_in_object = a_near ? *hit_a : *hit_b;
+        if (point.normal.dot(far_end - near_end) < 0.0) point.normal = -point.normal;
+        // The same ray as the bisection's at that end: its hit, on the near surface.
+        point.point_in_object = *caster.Intersect(camera, cam_from_object, near_end);
         points.push_back(point);
       }
     }

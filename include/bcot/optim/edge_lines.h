@@ -58,7 +58,6 @@
 #include "bcot/core/status.h"
 #include "bcot/optim/correspondence_lines.h"
 #include "bcot/optim/silhouette.h"
-#include "bcot/render/occlusion_contour.h"
 #include "bcot/render/ray_caster.h"
 
 namespace bcot {
