@@ -37,6 +37,10 @@ void DeclareFrame(OptionSchema<AnnotateOptions>* s) {
        "re-rendered solves per coarse level")
       .Range(AtLeast(1));
   s->Add(
+      "frame.coarse_check", [](auto& o) -> auto& { return o.tracker.frame.coarse_check; }, "",
+      "keep the coarse levels' pose only if the full-resolution energy is lower there than at "
+      "the start");
+  s->Add(
        "frame.damping_translation_mm",
        [](auto& o) -> auto& { return o.tracker.frame.damping_translation_mm; }, "mm",
        "per-solve damping towards the template's pose (0 = off)")

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -15,11 +16,11 @@
 #include <vector>
 
 #include "bcot/core/se3.h"
+#include "bcot/core/violations.h"
 #include "bcot/optim/correspondence_line_cost.h"
 #include "bcot/optim/pose_damping_cost.h"
 #include "bcot/optim/se3_manifold.h"
 #include "bcot/optim/silhouette.h"
-#include "bcot/core/violations.h"
 
 namespace bcot {
 
@@ -368,6 +369,35 @@ std::optional<ViewTemplate> LineariseView(const RayCaster& caster,
   return t;
 }
 
+// LineariseView of every view, concurrently; `view_summaries` (one per view) receive what it
+// records at level 0.
+std::vector<std::optional<ViewTemplate>> LineariseViews(
+    const RayCaster& caster, const FrameProblemOptions& options,
+    const std::vector<FrameView>& views, int level, const LevelOptions& level_options,
+    const Eigen::Isometry3d& linearisation_pose, std::vector<FrameViewSummary>* view_summaries) {
+  std::vector<std::optional<ViewTemplate>> linearised(views.size());
+  tbb::parallel_for(size_t{0}, views.size(), [&](size_t v) {
+    linearised[v] = LineariseView(caster, options, views[v], static_cast<int>(v), level,
+                                  level_options, linearisation_pose, &(*view_summaries)[v]);
+  });
+  return linearised;
+}
+
+// The energy of the linearised views at `parameters` per residual term (band pixels and
+// lines), which compares poses whose bands hold different numbers of pixels; +∞ without terms.
+double EnergyPerTerm(const std::vector<std::optional<ViewTemplate>>& linearised,
+                     const double* parameters) {
+  double energy = 0.0;
+  size_t terms = 0;
+  for (const std::optional<ViewTemplate>& t : linearised) {
+    if (!t.has_value()) continue;
+    energy += t->Energy(parameters);
+    if (t->region_template != nullptr) terms += t->region_template->pixels.size();
+    if (t->lines != nullptr) terms += t->lines->lines.size();
+  }
+  return terms > 0 ? energy / static_cast<double>(terms) : std::numeric_limits<double>::infinity();
+}
+
 // Adds the residual blocks of a linearised view on `parameters` to `problem`.
 void AddViewTerms(const ViewTemplate& t, const FrameView& view, double* parameters,
                   ceres::Problem* problem) {
@@ -446,16 +476,28 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
   };
 
   summary.termination = FrameTermination::kMaxRounds;
+  bool coarse_ran = false;
   for (const Step& step : CoarseToFineSteps(options_)) {
     const std::string where = step.round < 0 ? fmt::format("level {}", step.level)
                                              : fmt::format("round {}", step.round + 1);
     const LevelOptions level_options = OptionsAtLevel(options_, step.level);
-    const Eigen::Isometry3d linearisation_pose = FromPoseParameters(x.data());
-    std::vector<std::optional<ViewTemplate>> linearised(views.size());
-    tbb::parallel_for(size_t{0}, views.size(), [&](size_t v) {
-      linearised[v] = LineariseView(caster_, options_, views[v], static_cast<int>(v), step.level,
-                                    level_options, linearisation_pose, &summary.views[v]);
-    });
+    Eigen::Isometry3d linearisation_pose = FromPoseParameters(x.data());
+    std::vector<std::optional<ViewTemplate>> linearised = LineariseViews(
+        caster_, options_, views, step.level, level_options, linearisation_pose, &summary.views);
+    if (step.round == 0 && coarse_ran && options_.coarse_check) {
+      // The coarse check (frame_problem.h): the rounds start where the level-0 energy is lower.
+      std::vector<FrameViewSummary> start_summaries(views.size());
+      std::vector<std::optional<ViewTemplate>> at_start = LineariseViews(
+          caster_, options_, views, step.level, level_options, start, &start_summaries);
+      const PoseParameters start_x = ToPoseParameters(start);
+      if (EnergyPerTerm(at_start, start_x.data()) < EnergyPerTerm(linearised, x.data())) {
+        x = start_x;
+        linearisation_pose = start;
+        linearised = std::move(at_start);
+        summary.views = std::move(start_summaries);
+        summary.coarse_rejected = true;
+      }
+    }
     std::vector<ViewTemplate> templates;
     ceres::Problem problem;
     for (size_t v = 0; v < views.size(); ++v) {
@@ -476,7 +518,10 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
     if (!ceres_summary.IsSolutionUsable()) {
       return fail(FrameTermination::kSolverFailure, where + ": " + ceres_summary.message);
     }
-    if (step.round < 0) continue;
+    if (step.round < 0) {
+      coarse_ran = true;
+      continue;
+    }
 
     RecordEnergies(templates, x.data(), &summary);
     if (!std::isfinite(summary.final_energy)) {

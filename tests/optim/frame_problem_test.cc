@@ -158,5 +158,52 @@ TEST_F(FrameProblemTest, ZeroWeightViewContributesNothing) {
   EXPECT_EQ(summary.views[1].energy, 0.0);
 }
 
+// The coarse check (frame_problem.h). The coarse levels get an inverted colour model (the
+// object's colours counted as background and the rest as foreground), a stand-in for any
+// coarse energy whose minimum lies elsewhere than the object: they pull the pose far away. The
+// level-0 model is right, so the energy per term is lower at the start, the rounds start there
+// and end at the truth; without the check they start from the coarse result and stay lost.
+TEST_F(FrameProblemTest, CoarseLevelsPulledAwayAreRejectedByTheLevel0Energy) {
+  const test::BinocularScene scene;
+  const Eigen::Isometry3d& truth = scene.rig_from_objcentre;
+  const cv::Mat3b image =
+      test::RenderTestImage(*caster_, scene.camera0, scene.cam0_from_rig * truth, 7);
+  const Silhouette silhouette = RenderSilhouette(
+      *caster_, scene.camera0, scene.cam0_from_rig * truth * mesh_->objcentre_from_template());
+  GlobalColorModel level0_model{ColorModelOptions()};
+  level0_model.Update(image, silhouette);
+  Silhouette inverted = silhouette;
+  inverted.mask = 255 - silhouette.mask;
+  GlobalColorModel coarse_model{ColorModelOptions()};
+  coarse_model.Update(image, inverted);
+
+  const Eigen::Isometry3d start =
+      truth * Eigen::Isometry3d(Eigen::Translation3d(0.5, -0.5, 0.0) *
+                                Eigen::AngleAxisd(0.01, Eigen::Vector3d(1, 2, 3).normalized()));
+  auto solve = [&](bool coarse_check, Eigen::Isometry3d* pose) {
+    FrameProblemOptions options;
+    options.rounds = 1;
+    options.edge.enabled = false;
+    options.coarse_check = coarse_check;
+    ASSERT_EQ(options.pyramid_levels, 3);
+    *pose = start;
+    const FrameSummary summary =
+        FrameProblem(*caster_, options)
+            .Solve(
+                {{&scene.camera0, scene.cam0_from_rig, &image, &coarse_model, 1.0, &level0_model}},
+                pose);
+    ASSERT_TRUE(summary.usable()) << summary.message;
+    EXPECT_EQ(summary.coarse_rejected, coarse_check);
+  };
+  Eigen::Isometry3d unchecked, checked;
+  solve(false, &unchecked);
+  solve(true, &checked);
+  // One view: the rotation and the position across the line of sight (camera 0 is the rig
+  // frame), not the depth, which one view measures less well.
+  EXPECT_LT(RotationDistanceDeg(checked.linear(), truth.linear()), 0.5);
+  EXPECT_LT((checked.translation() - truth.translation()).head<2>().norm(), 0.5);
+  EXPECT_GT(RotationDistanceDeg(unchecked.linear(), truth.linear()), 10.0);
+}
+
 }  // namespace
 }  // namespace bcot

@@ -21,6 +21,15 @@
 // only bring the pose into the band of level 0: a smoother energy has a slightly different
 // minimum (measured 0.2° on a bunny at level 2), so they run once, before the rounds, never
 // between them.
+// Coarse check. Their smoother, wider energy can also be decided by what surrounds the object
+// rather than by its contour: around a 60–80 px object a band of 48 px is mostly background,
+// and a same-coloured object touching it pulled the coarse minimum 15–22° away on most frames
+// of such a scene, from which the rounds did not always return
+// (docs/notes/issue12_coarse_levels.md). So when coarse levels ran, the first round also
+// linearises the views at the pose the solve started from and compares the level-0 energy per
+// residual term (the band's pixel count changes with the pose) there and at the coarse
+// result; the rounds start from the lower of the two (FrameSummary::coarse_rejected when that
+// is the start). One more level-0 linearisation per view and frame.
 //
 // Monocular tracking is the same code with one view. Failure is data: the Summary says what
 // happened; the pose is only written when the solve produced a finite energy.
@@ -102,6 +111,9 @@ struct FrameProblemOptions {
   // template is only valid within about a band of the pose it was rendered at, so a large
   // inter-frame motion needs several re-linearisations before level 0.
   int coarse_rounds = 1;
+  // Keep the coarse levels' pose only when the level-0 energy per term there is not above the
+  // start's (see "Coarse check" above); false = always keep it.
+  bool coarse_check = true;
   // Stop after a round that moved the pose by less than both tolerances (rotation in degrees,
   // translation in mm); >= 0, 0 = always run every round.
   double round_tolerance_deg = 1e-4;
@@ -167,6 +179,9 @@ struct FrameSummary {
   double final_energy = 0.0;    // Σ views at the final pose, level 0 template of the last round
   double last_round_rotation_deg = 0.0;  // pose change made by the last round
   double last_round_translation_mm = 0.0;
+  // The coarse check found the coarse levels' pose worse than the start: the rounds started
+  // from the start pose.
+  bool coarse_rejected = false;
   std::vector<FrameViewSummary> views;  // in the order of the FrameView list
   std::string message;                  // why, when not kConverged / kMaxRounds
 
