@@ -53,6 +53,11 @@ Status RenderOptions::Validate() const {
     violations.push_back(fmt::format("point_stride_px = {} needs samples_per_axis = 1, not {}",
                                      point_stride_px, samples_per_axis));
   }
+  if (!mask_everywhere && !(depth || normal_in_cam || point_in_object || triangle_id)) {
+    violations.push_back(
+        "mask_everywhere = false needs depth, normal_in_cam, point_in_object or "
+        "triangle_id (else nothing is traced)");
+  }
   return JoinViolations("render", violations);
 }
 
@@ -392,9 +397,11 @@ void RayCaster::Render(const Camera& camera, const Eigen::Isometry3d& cam_from_o
   int row_offset = 0;
   int grid_step = 1;
   if (!geometry || stride > 1) {
-    // The mask everywhere from occlusion rays.
-    render_internal::TraceGrid(impl_->scene, frame, camera, grid, /*occlusion_only=*/true,
-                               [&](const LaneHit& hit) { view->mask(hit.row, hit.col) = 255; });
+    // The mask everywhere from occlusion rays (unless the caller takes it from the contour).
+    if (options.mask_everywhere) {
+      render_internal::TraceGrid(impl_->scene, frame, camera, grid, /*occlusion_only=*/true,
+                                 [&](const LaneHit& hit) { view->mask(hit.row, hit.col) = 255; });
+    }
     if (!geometry) return;
     // Then closest-hit rays on the pixels whose image coordinates are multiples of the stride;
     // their mask is the closest-hit result, so a set mask always comes with its geometry.

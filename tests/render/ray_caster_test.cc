@@ -450,6 +450,35 @@ TEST_F(SphereTest, StridedGeometryMatchesTheFullRenderOnItsGrid) {
   EXPECT_FALSE(invalid.Validate().ok());
 }
 
+// mask_everywhere = false (for masks taken from the contour): the mask is traced only where the
+// geometry is, on the stride grid, and equals the full render's there.
+TEST_F(SphereTest, StridedMaskOnlyOnItsGrid) {
+  const Camera camera = TestCamera();
+  const Eigen::Isometry3d cam_from_object = CamFromObject({-21.0, 13.0, kDistance});
+  const RenderedView full = caster_.Render(camera, cam_from_object);
+  RenderOptions options;
+  options.point_stride_px = 4;
+  options.mask_everywhere = false;
+  const RenderedView view = caster_.Render(camera, cam_from_object, options);
+  ASSERT_EQ(view.roi, full.roi);
+  int on_grid_hits = 0;
+  for (int r = 0; r < view.mask.rows; ++r) {
+    for (int c = 0; c < view.mask.cols; ++c) {
+      const bool on_grid = (view.roi.x + c) % 4 == 0 && (view.roi.y + r) % 4 == 0;
+      EXPECT_EQ(view.mask(r, c), on_grid ? full.mask(r, c) : 0) << r << ", " << c;
+      on_grid_hits += on_grid && view.mask(r, c) != 0;
+    }
+  }
+  EXPECT_GT(on_grid_hits, 1000 / 16);
+  RenderOptions nothing_traced;
+  nothing_traced.mask_everywhere = false;
+  nothing_traced.depth = nothing_traced.normal_in_cam = nothing_traced.point_in_object =
+      nothing_traced.triangle_id = false;
+  const Status status = nothing_traced.Validate();
+  EXPECT_EQ(status.code(), StatusCode::kInvalidConfig);
+  EXPECT_THAT(status.message(), HasSubstr("mask_everywhere = false"));
+}
+
 TEST(CubeTest, FrontFaceDepthAndNormal) {
   const Mesh cube = MakeBox(50.0);
   const RayCaster caster(cube);

@@ -17,11 +17,17 @@
 namespace bcot {
 
 struct Silhouette {
-  // camera.height × camera.width; 255 where the pixel centre's ray hits the mesh.
+  // camera.height × camera.width; 255 where the pixel centre's ray hits the mesh. Filled from
+  // the contour (FillContour) when the object's box lies inside the image and no model point
+  // is needed at every pixel: then a pixel centre within the contour's precision_px of the
+  // boundary, or on a part thinner than its coarse grid, may differ from its ray (about 5 of
+  // 20,000 pixels of a 250-px object).
   cv::Mat1b mask;
-  // The render the mask was pasted from (projected bounding box, one sample per pixel):
-  // point_in_object (O_t) of every inside pixel; depth, normals and triangle ids are not
-  // rendered (empty), nor point_in_object by RenderSilhouetteMask.
+  // The render over the projected bounding box (one sample per pixel): point_in_object (O_t)
+  // of the inside pixels of its point grid; depth, normals and triangle ids are not rendered
+  // (empty), nor point_in_object by RenderSilhouetteContour and RenderSilhouetteMask. Its mask
+  // holds the grid's rays (with a point stride > 1 only the stride pixels; elsewhere 0) or,
+  // without points, the box's part of `mask`.
   RenderedView view;
   // Sub-pixel contour (outer boundaries and holes), outward normals, exact model points.
   std::vector<ContourPoint> contour;
@@ -37,14 +43,15 @@ Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
                             const ContourOptions& contour_options = {}, int point_stride_px = 1);
 
 // The mask and contour of RenderSilhouette without per-pixel model points (view.point_in_object
-// empty; the mask from occlusion rays): for consumers that read the mask and the contour only
-// (colour models, the quality check), saving a closest-hit ray per pixel.
+// empty): for consumers that read the mask and the contour only (colour models, the quality
+// check), saving a closest-hit ray per pixel.
 Silhouette RenderSilhouetteContour(const RayCaster& caster, const Camera& camera,
                                    const Eigen::Isometry3d& cam_from_template,
                                    const ContourOptions& contour_options = {});
 
-// The mask and render of RenderSilhouette without the contour (left empty): for consumers that
-// only read the mask (ColorModel::UsesContour() false), saving the contour extraction.
+// The mask of RenderSilhouette without the contour (left empty; one of 1/16 px precision is
+// traced for the mask): for consumers that only read the mask (ColorModel::UsesContour()
+// false).
 Silhouette RenderSilhouetteMask(const RayCaster& caster, const Camera& camera,
                                 const Eigen::Isometry3d& cam_from_template);
 

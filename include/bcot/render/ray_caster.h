@@ -43,6 +43,10 @@ struct RenderOptions {
   // the mask at every pixel from occlusion rays. For templates that read the geometry on a
   // pixel stride. >= 1; > 1 needs samples_per_axis = 1.
   int point_stride_px = 1;
+  // With point_stride_px > 1: true = the mask at every pixel (occlusion rays); false = only at
+  // the stride pixels (their closest-hit rays), elsewhere 0, for callers that take the mask
+  // from the contour (FillContour). Needs one of the images above when false.
+  bool mask_everywhere = true;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
