@@ -23,8 +23,8 @@
 // between them.
 // Coarse check. Their smoother, wider energy can also be decided by what surrounds the object
 // rather than by its contour: around a 60–80 px object a band of 48 px is mostly background,
-// and a same-coloured object touching it pulled the coarse minimum 15–22° away on most frames
-// of such a scene, from which the rounds did not always return
+// and on a Cycles scene of such an object, with a same-coloured one beside it, the coarse
+// minimum lay 15–22° away on most frames, from where the rounds did not always return
 // (docs/notes/issue12_coarse_levels.md). So when coarse levels ran, the first round also
 // linearises the views at the pose the solve started from and compares the level-0 energy per
 // residual term (the band's pixel count changes with the pose) there and at the coarse
