@@ -476,7 +476,6 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
   };
 
   summary.termination = FrameTermination::kMaxRounds;
-  bool coarse_ran = false;
   for (const Step& step : CoarseToFineSteps(options_)) {
     const std::string where = step.round < 0 ? fmt::format("level {}", step.level)
                                              : fmt::format("round {}", step.round + 1);
@@ -484,7 +483,8 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
     Eigen::Isometry3d linearisation_pose = FromPoseParameters(x.data());
     std::vector<std::optional<ViewTemplate>> linearised = LineariseViews(
         caster_, options_, views, step.level, level_options, linearisation_pose, &summary.views);
-    if (step.round == 0 && coarse_ran && options_.coarse_check) {
+    // Every coarse level has run before round 1 (a failed one ends the solve).
+    if (step.round == 0 && options_.pyramid_levels > 1 && options_.coarse_check) {
       // The coarse check (frame_problem.h): the rounds start where the level-0 energy is lower.
       std::vector<FrameViewSummary> start_summaries(views.size());
       std::vector<std::optional<ViewTemplate>> at_start = LineariseViews(
@@ -518,10 +518,7 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
     if (!ceres_summary.IsSolutionUsable()) {
       return fail(FrameTermination::kSolverFailure, where + ": " + ceres_summary.message);
     }
-    if (step.round < 0) {
-      coarse_ran = true;
-      continue;
-    }
+    if (step.round < 0) continue;
 
     RecordEnergies(templates, x.data(), &summary);
     if (!std::isfinite(summary.final_energy)) {

@@ -47,12 +47,10 @@ Silhouette RenderMask(const RayCaster& caster, const Camera& camera,
   return silhouette;
 }
 
-// True when the contour's box lies inside the image with a pixel to spare. Where the object
-// leaves the image its contour has gaps along the border (no bracket there), which a filled
-// polygon would close with chords.
-bool ContourBoxInsideImage(const RayCaster& caster, const Camera& camera,
-                           const Eigen::Isometry3d& cam_from_template, int margin_px) {
-  const cv::Rect box = caster.ProjectedBoundingBox(camera, cam_from_template, margin_px);
+// True when `box` (the contour's) lies inside the image with a pixel to spare. Where the
+// object leaves the image its contour has gaps along the border (no bracket there), which a
+// filled polygon would close with chords.
+bool InsideImage(const cv::Rect& box, const Camera& camera) {
   return !box.empty() && box.x > 0 && box.y > 0 && box.x + box.width < camera.width &&
          box.y + box.height < camera.height;
 }
@@ -62,10 +60,11 @@ bool ContourBoxInsideImage(const RayCaster& caster, const Camera& camera,
 // (FillContour), and when `points`, the model points come from closest-hit rays on the
 // `point_stride_px` grid only (RenderOptions::mask_everywhere false). Saves the occlusion ray
 // of every other pixel of the box (docs/notes/issue19_speed.md, "The mask from the contour").
+// `box` is the contour's: the projected bounding box grown by contour_options.margin_px.
 Silhouette RenderFromContour(const RayCaster& caster, const Camera& camera,
                              const Eigen::Isometry3d& cam_from_template,
-                             const ContourOptions& contour_options, bool points,
-                             int point_stride_px) {
+                             const ContourOptions& contour_options, const cv::Rect& box,
+                             bool points, int point_stride_px) {
   Silhouette silhouette;
   silhouette.contour =
       caster.ExtractContour(camera, cam_from_template, contour_options, /*rendered=*/nullptr);
@@ -73,35 +72,40 @@ Silhouette RenderFromContour(const RayCaster& caster, const Camera& camera,
   FillContour(silhouette.contour, &silhouette.mask);
   if (points) {
     RenderOptions render_options;
-    render_options.margin_px = contour_options.margin_px;
+    render_options.roi = box;
     render_options.depth = render_options.normal_in_cam = render_options.triangle_id = false;
     render_options.point_stride_px = point_stride_px;
     render_options.mask_everywhere = false;
     silhouette.view = caster.Render(camera, cam_from_template, render_options);
   } else {
-    silhouette.view.roi =
-        caster.ProjectedBoundingBox(camera, cam_from_template, contour_options.margin_px);
-    silhouette.mask(silhouette.view.roi).copyTo(silhouette.view.mask);
+    silhouette.view.roi = box;
+    silhouette.mask(box).copyTo(silhouette.view.mask);
   }
   return silhouette;
 }
 
 // The silhouette from its contour where that is exact enough (see RenderFromContour), else
-// from a render of the whole box (RenderMask) with the contour read from its mask.
+// from a render of the whole box (RenderMask) with the contour read from its mask. Without
+// `keep_contour` the contour is only the means of the mask and is left empty.
 Silhouette RenderSilhouetteOf(const RayCaster& caster, const Camera& camera,
                               const Eigen::Isometry3d& cam_from_template,
                               const ContourOptions& contour_options, bool points,
-                              int point_stride_px) {
-  if ((!points || point_stride_px > 1) &&
-      ContourBoxInsideImage(caster, camera, cam_from_template, contour_options.margin_px)) {
-    return RenderFromContour(caster, camera, cam_from_template, contour_options, points,
-                             point_stride_px);
+                              int point_stride_px, bool keep_contour) {
+  const cv::Rect box =
+      caster.ProjectedBoundingBox(camera, cam_from_template, contour_options.margin_px);
+  if ((!points || point_stride_px > 1) && InsideImage(box, camera)) {
+    Silhouette silhouette = RenderFromContour(caster, camera, cam_from_template, contour_options,
+                                              box, points, point_stride_px);
+    if (!keep_contour) silhouette.contour.clear();
+    return silhouette;
   }
   Silhouette silhouette = RenderMask(caster, camera, cam_from_template, contour_options.margin_px,
                                      points, point_stride_px);
   // Rendered over the contour's box, so that the contour reads its coarse grid from the mask.
-  silhouette.contour =
-      caster.ExtractContour(camera, cam_from_template, contour_options, &silhouette.view);
+  if (keep_contour) {
+    silhouette.contour =
+        caster.ExtractContour(camera, cam_from_template, contour_options, &silhouette.view);
+  }
   return silhouette;
 }
 
@@ -114,27 +118,22 @@ Silhouette RenderSilhouetteMask(const RayCaster& caster, const Camera& camera,
   ContourOptions contour_options;
   contour_options.margin_px = 2;
   contour_options.precision_px = 1.0 / 16.0;
-  if (!ContourBoxInsideImage(caster, camera, cam_from_template, contour_options.margin_px)) {
-    return RenderMask(caster, camera, cam_from_template, contour_options.margin_px,
-                      /*points=*/false, 1);
-  }
-  Silhouette silhouette =
-      RenderFromContour(caster, camera, cam_from_template, contour_options, false, 1);
-  silhouette.contour.clear();
-  return silhouette;
+  return RenderSilhouetteOf(caster, camera, cam_from_template, contour_options, false, 1,
+                            /*keep_contour=*/false);
 }
 
 Silhouette RenderSilhouetteContour(const RayCaster& caster, const Camera& camera,
                                    const Eigen::Isometry3d& cam_from_template,
                                    const ContourOptions& contour_options) {
-  return RenderSilhouetteOf(caster, camera, cam_from_template, contour_options, false, 1);
+  return RenderSilhouetteOf(caster, camera, cam_from_template, contour_options, false, 1,
+                            /*keep_contour=*/true);
 }
 
 Silhouette RenderSilhouette(const RayCaster& caster, const Camera& camera,
                             const Eigen::Isometry3d& cam_from_template,
                             const ContourOptions& contour_options, int point_stride_px) {
   return RenderSilhouetteOf(caster, camera, cam_from_template, contour_options, true,
-                            point_stride_px);
+                            point_stride_px, /*keep_contour=*/true);
 }
 
 }  // namespace bcot
