@@ -41,6 +41,11 @@ void DeclareFrame(OptionSchema<AnnotateOptions>* s) {
       "keep the coarse levels' pose only if the full-resolution energy is lower there than at "
       "the start");
   s->Add(
+       "frame.coarse_check_min_shift_px",
+       [](auto& o) -> auto& { return o.tracker.frame.coarse_check_min_shift_px; }, "px",
+       "run the coarse check only when the coarse levels moved the object's box this far")
+      .Range(NonNegative());
+  s->Add(
        "frame.damping_translation_mm",
        [](auto& o) -> auto& { return o.tracker.frame.damping_translation_mm; }, "mm",
        "per-solve damping towards the template's pose (0 = off)")

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -21,6 +22,7 @@
 #include "bcot/optim/pose_damping_cost.h"
 #include "bcot/optim/se3_manifold.h"
 #include "bcot/optim/silhouette.h"
+#include "bcot/render/mesh.h"
 
 namespace bcot {
 
@@ -48,6 +50,10 @@ Status FrameProblemOptions::Validate() const {
   if (!(damping_rotation_deg >= 0.0) || !std::isfinite(damping_rotation_deg)) {
     violations.push_back(
         fmt::format("damping_rotation_deg = {}, must be finite and >= 0", damping_rotation_deg));
+  }
+  if (!(coarse_check_min_shift_px >= 0.0) || !std::isfinite(coarse_check_min_shift_px)) {
+    violations.push_back(fmt::format("coarse_check_min_shift_px = {}, must be finite and >= 0",
+                                     coarse_check_min_shift_px));
   }
   if (coarse_rounds < 1) {
     violations.push_back(fmt::format("coarse_rounds = {}, must be >= 1", coarse_rounds));
@@ -398,6 +404,32 @@ double EnergyPerTerm(const std::vector<std::optional<ViewTemplate>>& linearised,
   return terms > 0 ? energy / static_cast<double>(terms) : std::numeric_limits<double>::infinity();
 }
 
+// The largest image distance (px) between the projections of a corner of the mesh's bounding
+// box at pose `a` and at pose `b`, over the corners and views; +∞ when a corner lies behind a
+// camera at either pose.
+double MaxCornerShiftPx(const Mesh& mesh, const std::vector<FrameView>& views,
+                        const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  const Eigen::Isometry3d objcentre_from_template = mesh.objcentre_from_template();
+  double shift = 0.0;
+  for (const FrameView& view : views) {
+    const Eigen::Isometry3d cam_from_template_a = view.cam_from_rig * a * objcentre_from_template;
+    const Eigen::Isometry3d cam_from_template_b = view.cam_from_rig * b * objcentre_from_template;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d point((corner & 1) ? mesh.bbox_max().x() : mesh.bbox_min().x(),
+                                  (corner & 2) ? mesh.bbox_max().y() : mesh.bbox_min().y(),
+                                  (corner & 4) ? mesh.bbox_max().z() : mesh.bbox_min().z());
+      const Eigen::Vector3d in_cam_a = cam_from_template_a * point;
+      const Eigen::Vector3d in_cam_b = cam_from_template_b * point;
+      if (in_cam_a.z() <= 0.0 || in_cam_b.z() <= 0.0) {
+        return std::numeric_limits<double>::infinity();
+      }
+      shift =
+          std::max(shift, (view.camera->Project(in_cam_a) - view.camera->Project(in_cam_b)).norm());
+    }
+  }
+  return shift;
+}
+
 // Adds the residual blocks of a linearised view on `parameters` to `problem`.
 void AddViewTerms(const ViewTemplate& t, const FrameView& view, double* parameters,
                   ceres::Problem* problem) {
@@ -484,8 +516,11 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
     std::vector<std::optional<ViewTemplate>> linearised = LineariseViews(
         caster_, options_, views, step.level, level_options, linearisation_pose, &summary.views);
     // Every coarse level has run before round 1 (a failed one ends the solve).
-    if (step.round == 0 && options_.pyramid_levels > 1 && options_.coarse_check) {
+    if (step.round == 0 && options_.pyramid_levels > 1 && options_.coarse_check &&
+        MaxCornerShiftPx(caster_.mesh(), views, start, linearisation_pose) >=
+            options_.coarse_check_min_shift_px) {
       // The coarse check (frame_problem.h): the rounds start where the level-0 energy is lower.
+      summary.coarse_checked = true;
       std::vector<FrameViewSummary> start_summaries(views.size());
       std::vector<std::optional<ViewTemplate>> at_start = LineariseViews(
           caster_, options_, views, step.level, level_options, start, &start_summaries);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "region_test_scene.h"
@@ -24,6 +25,7 @@ TEST(FrameProblemOptionsTest, ValidateListsEveryViolation) {
   options.iterations = -1;
   options.pyramid_levels = 9;
   options.round_tolerance_mm = -1.0;
+  options.coarse_check_min_shift_px = -3.0;
   options.region.band_px = 0.0;
   options.cost.heaviside_slope = -2.0;
   const Status status = options.Validate();
@@ -32,6 +34,7 @@ TEST(FrameProblemOptionsTest, ValidateListsEveryViolation) {
   EXPECT_THAT(status.message(), HasSubstr("iterations = -1"));
   EXPECT_THAT(status.message(), HasSubstr("pyramid_levels = 9"));
   EXPECT_THAT(status.message(), HasSubstr("round_tolerance_mm = -1"));
+  EXPECT_THAT(status.message(), HasSubstr("coarse_check_min_shift_px = -3"));
   EXPECT_THAT(status.message(), HasSubstr("band_px = 0"));
   EXPECT_THAT(status.message(), HasSubstr("heaviside_slope = -2"));
 }
@@ -180,29 +183,36 @@ TEST_F(FrameProblemTest, CoarseLevelsPulledAwayAreRejectedByTheLevel0Energy) {
   const Eigen::Isometry3d start =
       truth * Eigen::Isometry3d(Eigen::Translation3d(0.5, -0.5, 0.0) *
                                 Eigen::AngleAxisd(0.01, Eigen::Vector3d(1, 2, 3).normalized()));
-  auto solve = [&](bool coarse_check, Eigen::Isometry3d* pose) {
+  // `min_shift_px` < 0: the check off.
+  auto solve = [&](double min_shift_px, Eigen::Isometry3d* pose) {
     FrameProblemOptions options;
     options.rounds = 1;
     options.edge.enabled = false;
-    options.coarse_check = coarse_check;
-    ASSERT_EQ(options.pyramid_levels, 3);
+    options.coarse_check = min_shift_px >= 0.0;
+    options.coarse_check_min_shift_px = std::max(min_shift_px, 0.0);
+    EXPECT_EQ(options.pyramid_levels, 3);
     *pose = start;
-    const FrameSummary summary =
-        FrameProblem(*caster_, options)
-            .Solve(
-                {{&scene.camera0, scene.cam0_from_rig, &image, &coarse_model, 1.0, &level0_model}},
-                pose);
-    ASSERT_TRUE(summary.usable()) << summary.message;
-    EXPECT_EQ(summary.coarse_rejected, coarse_check);
+    return FrameProblem(*caster_, options)
+        .Solve({{&scene.camera0, scene.cam0_from_rig, &image, &coarse_model, 1.0, &level0_model}},
+               pose);
   };
-  Eigen::Isometry3d unchecked, checked;
-  solve(false, &unchecked);
-  solve(true, &checked);
+  Eigen::Isometry3d unchecked, checked, skipped;
+  const FrameSummary unchecked_summary = solve(-1.0, &unchecked);
+  const FrameSummary checked_summary = solve(3.0, &checked);
+  // The coarse levels moved the object by far less than this: the check is skipped.
+  const FrameSummary skipped_summary = solve(1e6, &skipped);
+  for (const FrameSummary* summary : {&unchecked_summary, &checked_summary, &skipped_summary}) {
+    ASSERT_TRUE(summary->usable()) << summary->message;
+  }
+  EXPECT_FALSE(unchecked_summary.coarse_checked || unchecked_summary.coarse_rejected);
+  EXPECT_TRUE(checked_summary.coarse_checked && checked_summary.coarse_rejected);
+  EXPECT_FALSE(skipped_summary.coarse_checked || skipped_summary.coarse_rejected);
   // One view: the rotation and the position across the line of sight (camera 0 is the rig
   // frame), not the depth, which one view measures less well.
   EXPECT_LT(RotationDistanceDeg(checked.linear(), truth.linear()), 0.5);
   EXPECT_LT((checked.translation() - truth.translation()).head<2>().norm(), 0.5);
   EXPECT_GT(RotationDistanceDeg(unchecked.linear(), truth.linear()), 10.0);
+  EXPECT_TRUE(skipped.isApprox(unchecked, 1e-12));
 }
 
 }  // namespace

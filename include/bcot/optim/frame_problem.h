@@ -29,7 +29,9 @@
 // linearises the views at the pose the solve started from and compares the level-0 energy per
 // residual term (the band's pixel count changes with the pose) there and at the coarse
 // result; the rounds start from the lower of the two (FrameSummary::coarse_rejected when that
-// is the start). One more level-0 linearisation per view and frame.
+// is the start). One more level-0 linearisation per view and frame, saved when the coarse
+// levels moved no corner of the mesh's bounding box by coarse_check_min_shift_px in any view:
+// the level-0 rounds, whose band is several times wider, start from either pose alike.
 //
 // Monocular tracking is the same code with one view. Failure is data: the Summary says what
 // happened; the pose is only written when the solve produced a finite energy.
@@ -114,6 +116,11 @@ struct FrameProblemOptions {
   // Keep the coarse levels' pose only when the level-0 energy per term there is not above the
   // start's (see "Coarse check" above); false = always keep it.
   bool coarse_check = true;
+  // The check runs only when the coarse levels moved a corner of the mesh's bounding box by at
+  // least this much (px) in some view; >= 0, 0 = always. 3: within a quarter of annotation's
+  // level-0 band; the Cycles scenes the check was made for moved 15–22° (tens of px) when it
+  // mattered (docs/notes/issue19_speed.md, "Skipping the coarse check").
+  double coarse_check_min_shift_px = 3.0;
   // Stop after a round that moved the pose by less than both tolerances (rotation in degrees,
   // translation in mm); >= 0, 0 = always run every round.
   double round_tolerance_deg = 1e-4;
@@ -182,6 +189,9 @@ struct FrameSummary {
   // The coarse check found the coarse levels' pose worse than the start: the rounds started
   // from the start pose.
   bool coarse_rejected = false;
+  // The coarse check ran (coarse levels ran, coarse_check on, they moved the object by at least
+  // coarse_check_min_shift_px).
+  bool coarse_checked = false;
   std::vector<FrameViewSummary> views;  // in the order of the FrameView list
   std::string message;                  // why, when not kConverged / kMaxRounds
 
