@@ -1,5 +1,5 @@
 // bcot annotate <sequence dir> --out DIR [--keyframes FILE] [--frames A:B] [--config FILE]
-//               [--set section.key=value]... [--overwrite] [--quiet]
+//               [--set section.key=value]... [--overwrite] [--image-cache-mb N] [--quiet]
 // Annotates one sequence (see bcot/annotate/annotator.h) with a progress line on stderr.
 #include <fmt/format.h>
 
@@ -87,6 +87,12 @@ void AddAnnotateCommand(CLI::App& app, int* exit_code) {
   command->add_flag("--overwrite", flags->inputs.overwrite,
                     "Write into an --out that holds files bcot annotate does not write (they "
                     "are left alone); without it such a directory is refused");
+  command
+      ->add_option("--image-cache-mb", flags->inputs.image_cache_mb,
+                   "Decoded frames kept in memory (MiB) so the quality check does not decode "
+                   "them again; 0 = none")
+      ->capture_default_str()
+      ->check(CLI::Range(size_t{0}, size_t{1} << 30));
   command->add_flag("--quiet", flags->quiet, "No progress on stderr");
   command->callback([flags, exit_code] { *exit_code = RunAnnotate(*flags); });
 }

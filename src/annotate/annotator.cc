@@ -24,6 +24,7 @@
 #include "bcot/annotate/tracking_plan.h"
 #include "bcot/core/annotation_poses.h"
 #include "bcot/core/file_util.h"
+#include "bcot/core/image_cache.h"
 #include "bcot/core/image_io.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/se3.h"
@@ -150,14 +151,17 @@ StatusOr<std::vector<TrackedView>> SelectViews(const Rig& rig, const ViewSelecti
   return views;
 }
 
-// The images of `frame` from the selected cameras (SelectViews), decoded concurrently; the
-// first failure in view order is reported.
+// The images of `frame` from the selected cameras (SelectViews), decoded concurrently (through
+// `cache` when given); the first failure in view order is reported.
 StatusOr<std::vector<cv::Mat3b>> ReadFrameImages(const Sequence& sequence,
                                                  const std::vector<int>& rig_indices,
-                                                 const std::vector<TrackedView>& views, int frame) {
+                                                 const std::vector<TrackedView>& views, int frame,
+                                                 DecodedImageCache* cache) {
   std::vector<StatusOr<cv::Mat3b>> read(rig_indices.size(), Status::Internal("not read"));
   tbb::parallel_for(size_t{0}, rig_indices.size(), [&](size_t v) {
-    read[v] = ReadCameraImage(sequence.image_paths[rig_indices[v]][frame], views[v].camera);
+    const std::string& path = sequence.image_paths[rig_indices[v]][frame];
+    read[v] = cache != nullptr ? cache->Read(path, views[v].camera)
+                               : ReadCameraImage(path, views[v].camera);
   });
   std::vector<cv::Mat3b> images;
   for (StatusOr<cv::Mat3b>& image : read) {
@@ -252,10 +256,11 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
 StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence, const RayCaster& caster,
                                               const AnnotateOptions& options,
                                               const AnnotateProgress& progress,
-                                              const AnnotateFrameObserver& observer) {
+                                              const AnnotateFrameObserver& observer,
+                                              DecodedImageCache* images) {
   FrameSpan span;
   span.end = sequence.num_frames;
-  return AnnotateFrames(sequence, caster, options, span, progress, observer);
+  return AnnotateFrames(sequence, caster, options, span, progress, observer, images);
 }
 
 StatusOr<RefinedFrame> RefineFrame(const Sequence& sequence, const RayCaster& caster,
@@ -270,7 +275,7 @@ StatusOr<RefinedFrame> RefineFrame(const Sequence& sequence, const RayCaster& ca
   BCOT_ASSIGN_OR_RETURN(std::vector<TrackedView> views,
                         SelectViews(sequence.rig, options.views, &rig_indices));
   BCOT_ASSIGN_OR_RETURN(std::vector<cv::Mat3b> images,
-                        ReadFrameImages(sequence, rig_indices, views, frame));
+                        ReadFrameImages(sequence, rig_indices, views, frame, nullptr));
   BCOT_ASSIGN_OR_RETURN(std::unique_ptr<MultiViewTracker> tracker,
                         MultiViewTracker::Create(caster, std::move(views), options.tracker));
   const Eigen::Isometry3d objcentre_from_template = caster.mesh().objcentre_from_template();
@@ -284,7 +289,8 @@ StatusOr<RefinedFrame> RefineFrame(const Sequence& sequence, const RayCaster& ca
 StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayCaster& caster,
                                             const AnnotateOptions& options, const FrameSpan& span,
                                             const AnnotateProgress& progress,
-                                            const AnnotateFrameObserver& observer) {
+                                            const AnnotateFrameObserver& observer,
+                                            DecodedImageCache* images) {
   BCOT_RETURN_IF_ERROR(options.Validate());
   const std::vector<Eigen::Isometry3d>& existing = span.existing_rig_from_object;
   if (!(0 <= span.first && span.first < span.end && span.end <= sequence.num_frames)) {
@@ -347,7 +353,7 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
   const bool keep_templates = window || observer;
 
   const auto read_images = [&](int frame) {
-    return ReadFrameImages(sequence, rig_indices, *views, frame);
+    return ReadFrameImages(sequence, rig_indices, *views, frame, images);
   };
   // One solved frame before it is recorded (backward segments are recorded in frame order).
   struct Solved {
@@ -569,13 +575,15 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
   BCOT_ASSIGN_OR_RETURN(const Mesh mesh,
                         Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
   const RayCaster caster(mesh);
+  // The quality check reads the frames again, after the window has settled the poses.
+  DecodedImageCache images(inputs.image_cache_mb << 20);
   BCOT_ASSIGN_OR_RETURN(const SequenceAnnotation annotation,
-                        AnnotateSequence(sequence, caster, options, progress));
+                        AnnotateSequence(sequence, caster, options, progress, {}, &images));
   BCOT_RETURN_IF_ERROR(WriteAnnotation(out_dir, sequence, options, input_hash, annotation));
   BCOT_ASSIGN_OR_RETURN(
       QualityReport quality,
       MeasureQuality(sequence, caster, annotation.rig_from_object, annotation.view_names,
-                     options.quality, annotation.image_response.response));
+                     options.quality, annotation.image_response.response, &images));
   return FinishAnnotation(out_dir, sequence, caster, options, input_hash,
                           annotation.rig_from_object, std::move(quality), annotation.failed_frames);
 }

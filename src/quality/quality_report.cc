@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "bcot/core/image_cache.h"
 #include "bcot/core/image_io.h"
 #include "bcot/optim/silhouette.h"
 #include "bcot/quality/boundary_search.h"
@@ -45,11 +46,13 @@ bool IsMeasured(const ViewFrameQuality& quality, const QualityOptions& options) 
 // Measures one frame-view.
 StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& camera,
                                        const Eigen::Isometry3d& cam_from_object,
-                                       const std::string& image_path,
+                                       const std::string& image_path, DecodedImageCache* images,
                                        const Eigen::Vector3d& object_centre,
                                        double object_diameter_mm, const QualityOptions& options,
                                        const LinearTable& linear, uint32_t seed) {
-  BCOT_ASSIGN_OR_RETURN(const cv::Mat3b image, ReadCameraImage(image_path, camera));
+  BCOT_ASSIGN_OR_RETURN(const cv::Mat3b image, images != nullptr
+                                                   ? images->Read(image_path, camera)
+                                                   : ReadCameraImage(image_path, camera));
   ViewFrameQuality quality;
   const Silhouette silhouette =
       RenderSilhouetteContour(caster, camera, cam_from_object, QualityContourOptions(options));
@@ -234,8 +237,8 @@ StatusOr<QualityReport> MeasureQuality(const Sequence& sequence,
 StatusOr<QualityReport> MeasureQuality(const Sequence& sequence, const RayCaster& caster,
                                        const std::vector<Eigen::Isometry3d>& rig_from_object,
                                        const std::vector<std::string>& view_names,
-                                       const QualityOptions& options,
-                                       const ImageResponse& response) {
+                                       const QualityOptions& options, const ImageResponse& response,
+                                       DecodedImageCache* images) {
   BCOT_RETURN_IF_ERROR(options.Validate());
   if (!response.IsValid()) {
     return Status::InvalidConfig(fmt::format("image response {} is invalid", response.Name()));
@@ -259,8 +262,8 @@ StatusOr<QualityReport> MeasureQuality(const Sequence& sequence, const RayCaster
     const RigCamera& camera = sequence.rig[indices[view]];
     StatusOr<ViewFrameQuality> quality =
         MeasureView(caster, camera.camera, camera.cam_from_rig * rig_from_object[frame],
-                    sequence.image_paths[indices[view]][frame], mesh.bbox_center(), mesh.diameter(),
-                    options, linear, static_cast<uint32_t>(job + 1));
+                    sequence.image_paths[indices[view]][frame], images, mesh.bbox_center(),
+                    mesh.diameter(), options, linear, static_cast<uint32_t>(job + 1));
     if (quality.ok()) {
       report.frames[frame][view] = *quality;
     } else {

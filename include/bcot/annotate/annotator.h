@@ -28,12 +28,14 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "bcot/annotate/annotate_options.h"
 #include "bcot/annotate/image_response_file.h"
+#include "bcot/core/image_cache.h"
 #include "bcot/core/sequence.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/frame_problem.h"
@@ -78,11 +80,13 @@ StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence,
                                               const AnnotateOptions& options,
                                               const AnnotateProgress& progress = {},
                                               const AnnotateFrameObserver& observer = {});
-// The same with the ray caster of the sequence's mesh (O_t, mm) built by the caller.
+// The same with the ray caster of the sequence's mesh (O_t, mm) built by the caller; the frames
+// are read through `images` when given (kept there for a second pass).
 StatusOr<SequenceAnnotation> AnnotateSequence(const Sequence& sequence, const RayCaster& caster,
                                               const AnnotateOptions& options,
                                               const AnnotateProgress& progress = {},
-                                              const AnnotateFrameObserver& observer = {});
+                                              const AnnotateFrameObserver& observer = {},
+                                              DecodedImageCache* images = nullptr);
 
 // A span of frames to annotate; the other frames of the sequence keep their poses.
 struct FrameSpan {
@@ -111,10 +115,12 @@ StatusOr<RefinedFrame> RefineFrame(const Sequence& sequence, const RayCaster& ca
 // and progress count them). Anchors: init_pose.txt when the span starts at 0, the keyframes in
 // the span, and the existing pose before it (see FrameSpan). Errors as AnnotateSequence's, and
 // kInvalidInput for a span outside the sequence, kNotFound when no anchor starts tracking.
+// The frames are read through `images` when given.
 StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayCaster& caster,
                                             const AnnotateOptions& options, const FrameSpan& span,
                                             const AnnotateProgress& progress = {},
-                                            const AnnotateFrameObserver& observer = {});
+                                            const AnnotateFrameObserver& observer = {},
+                                            DecodedImageCache* images = nullptr);
 
 // A hash (16 hex digits) of everything a sequence's annotation depends on: rig.yaml,
 // object.yaml, the mesh file, init_pose.txt (when present), the keyframes file (when the
@@ -159,6 +165,10 @@ struct AnnotateInputs {
   std::string frames;
   // Write into an --out that holds files bcot annotate does not write (output_dir.h).
   bool overwrite = false;
+  // Decoded frames kept in memory (MiB) so that the quality check after the solve does not
+  // decode them again (image_cache.h); 0 = none. Changes no result, so it is not an option of
+  // the config (nor of its hash). 1024: 230 binocular 960×768 frames.
+  size_t image_cache_mb = 1024;
 };
 
 // LoadSequence with the keyframes of `inputs`; with `require_anchor`, kNotFound when the

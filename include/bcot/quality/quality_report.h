@@ -66,6 +66,7 @@
 #include <string>
 #include <vector>
 
+#include "bcot/core/image_cache.h"
 #include "bcot/core/linear_rgb.h"
 #include "bcot/core/sequence.h"
 #include "bcot/core/status.h"
@@ -131,11 +132,12 @@ StatusOr<QualityReport> MeasureQuality(const Sequence& sequence,
                                        const QualityOptions& options,
                                        const ImageResponse& response);
 // The same with the ray caster of the sequence's mesh (O_t, mm) that the caller already built,
-// e.g. the annotator's, so the mesh is neither loaded nor its BVH built again.
+// e.g. the annotator's, so the mesh is neither loaded nor its BVH built again, and the images
+// read through `images` when given (those the solve kept are not decoded again).
 StatusOr<QualityReport> MeasureQuality(const Sequence& sequence, const RayCaster& caster,
                                        const std::vector<Eigen::Isometry3d>& rig_from_object,
                                        const std::vector<std::string>& view_names,
-                                       const QualityOptions& options,
-                                       const ImageResponse& response);
+                                       const QualityOptions& options, const ImageResponse& response,
+                                       DecodedImageCache* images = nullptr);
 
 }  // namespace bcot
