@@ -24,6 +24,16 @@ Status CheckSilhouetteInputs(const Camera& camera, const cv::Mat3b& image,
 
 namespace {
 
+// A render of the mask and, when `points`, the model points on the `point_stride_px` grid: no
+// depth, normals or triangle ids.
+RenderOptions MaskAndPointsOptions(bool points, int point_stride_px) {
+  RenderOptions render_options;
+  render_options.depth = render_options.normal_in_cam = render_options.triangle_id = false;
+  render_options.point_in_object = points;
+  render_options.point_stride_px = point_stride_px;
+  return render_options;
+}
+
 // The silhouette's mask and render over the projected bounding box grown by `margin_px`;
 // `points`: with point_in_object on the `point_stride_px` grid (else occlusion rays only).
 Silhouette RenderMask(const RayCaster& caster, const Camera& camera,
@@ -31,12 +41,8 @@ Silhouette RenderMask(const RayCaster& caster, const Camera& camera,
                       int point_stride_px) {
   Silhouette silhouette;
   silhouette.mask = cv::Mat1b::zeros(camera.height, camera.width);
-  RenderOptions render_options;
+  RenderOptions render_options = MaskAndPointsOptions(points, point_stride_px);
   render_options.margin_px = margin_px;
-  // The mask, and the model points when asked for: no depth, normals or triangle ids.
-  render_options.depth = render_options.normal_in_cam = render_options.triangle_id = false;
-  render_options.point_in_object = points;
-  render_options.point_stride_px = point_stride_px;
   silhouette.view = caster.Render(camera, cam_from_template, render_options);
   const cv::Rect image_rect(0, 0, camera.width, camera.height);
   const cv::Rect inside = silhouette.view.roi & image_rect;
@@ -71,10 +77,8 @@ Silhouette RenderFromContour(const RayCaster& caster, const Camera& camera,
   silhouette.mask = cv::Mat1b::zeros(camera.height, camera.width);
   FillContour(silhouette.contour, &silhouette.mask);
   if (points) {
-    RenderOptions render_options;
+    RenderOptions render_options = MaskAndPointsOptions(/*points=*/true, point_stride_px);
     render_options.roi = box;
-    render_options.depth = render_options.normal_in_cam = render_options.triangle_id = false;
-    render_options.point_stride_px = point_stride_px;
     render_options.mask_everywhere = false;
     silhouette.view = caster.Render(camera, cam_from_template, render_options);
   } else {
