@@ -66,7 +66,7 @@ for spec in "${specs[@]}"; do
     cpu_ms=$(awk -v n="$frames" '{printf "%.0f", ($1 + $2) * 1000 / n}' "$ann.time")
     blocks=()
     [ "$variant" = annotate ] && blocks=(--blocks 10)
-    build/tests/bench/pbr_errors "$seq" "$ann" "${blocks[@]}" |
+    build/tests/bench/pbr_errors "$seq" "$ann" "${blocks[@]}" --rotation |
       awk -v s="$key" -v v="$variant" -v c="$cpu_ms" -v k="$contrast" 'BEGIN{OFS="\t"} {print s, v, c, k, $0}' >>"$results"
   done
 done

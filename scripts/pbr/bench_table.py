@@ -9,10 +9,21 @@ import sys
 COLS = ["cam", "frames", "rot", "rot_max", "ax", "ay", "az", "bx", "by", "bz", "sx", "sy", "sz",
         "worst", "lost"]
 
+# pbr_errors --rotation: the rotation error vector log(R·R_gtᵀ) in the camera's axes (deg).
+ROT_COLS = ["cam", "rbx", "rby", "rbz", "rsx", "rsy", "rsz", "step"]
+
 rows = []
+rotation_rows = []
 with open(sys.argv[1]) as f:
     for line in f:
         p = line.rstrip("\n").split("\t")
+        if p[4].endswith(":rotation"):
+            r = dict(zip(ROT_COLS, p[4:]))
+            for k in ROT_COLS[1:]:
+                r[k] = float(r[k])
+            r.update(seq=p[0], variant=p[1], cam=r["cam"].split(":")[0])
+            rotation_rows.append(r)
+            continue
         r = dict(zip(COLS, p[4:]))
         for k in COLS[1:]:
             r[k] = float(r[k])
@@ -62,3 +73,13 @@ if blocks:
     print(f"{'sequence':<34} {'block':<7} {'bias x':>7} {'bias y':>7} {'bias z':>7} {'rot°':>6}")
     for r in blocks:
         print(f"{r['seq']:<34} {r['cam']:<7} {r['bx']:+7.3f} {r['by']:+7.3f} {r['bz']:+7.3f} {r['rot']:6.3f}")
+
+if rotation_rows:
+    print("\n### rotation error about each camera axis (deg): bias = mean of log(R·R_gtᵀ) ± its "
+          "standard deviation; step = mean change from one frame to the next (≈ √2 × the spread "
+          "when the error is independent from frame to frame, ≈ 0 when it drifts)")
+    print(f"{'sequence':<34} {'setting':<9} {'cam':<5} {'about x':>14} {'about y':>14} "
+          f"{'about z':>14} {'step':>6}")
+    for r in rotation_rows:
+        print(f"{r['seq']:<34} {r['variant']:<9} {r['cam']:<5} {r['rbx']:+7.3f}±{r['rsx']:5.3f} "
+              f"{r['rby']:+7.3f}±{r['rsy']:5.3f} {r['rbz']:+7.3f}±{r['rsz']:5.3f} {r['step']:6.3f}")

@@ -9,15 +9,21 @@
 //   worst_t lost
 // (bias = mean signed error, std = its standard deviation, worst_t = max ‖e‖, lost = frames
 // with > 5° or > 50 mm). --blocks N adds lines `camera#b` for consecutive blocks of N frames.
-//   build/tests/bench/pbr_errors SEQ ANNOTATION_DIR [--blocks 10]
+// --rotation adds per camera the rotation error as a vector, φ = log(R·R_gtᵀ) in that camera's
+// axes (deg), whether it is a bias or jitter:
+//   camera:rotation bias_x bias_y bias_z std_x std_y std_z mean_step
+// (bias = mean φ, std its standard deviation per axis, mean_step = mean ‖φ_t − φ_{t−1}‖: about
+// √2 times the spread of φ when the errors of consecutive frames are independent, near 0 for
+// an error that drifts slowly).
+//   build/tests/bench/pbr_errors SEQ ANNOTATION_DIR [--blocks 10] [--rotation]
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
-#include <Eigen/Geometry>
-#include <fmt/format.h>
 
 #include "bcot/core/pose_io.h"
 #include "bcot/core/sequence.h"
@@ -43,14 +49,36 @@ void PrintStats(const std::string& name, const std::vector<double>& rot,
   const Eigen::Vector3d mean = sum / n;
   Eigen::Vector3d var = Eigen::Vector3d::Zero();
   for (int i = 0; i < n; ++i) var += (err[i] - mean).cwiseAbs2();
-  const Eigen::Vector3d sd = n > 1 ? Eigen::Vector3d((var / (n - 1)).cwiseSqrt()) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d sd =
+      n > 1 ? Eigen::Vector3d((var / (n - 1)).cwiseSqrt()) : Eigen::Vector3d::Zero();
   const Eigen::Vector3d abs_mean = abs_sum / n;
-  std::printf("%s\n", fmt::format("{}\t{}\t{:.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{:+.4f}\t{:+.4f}\t"
-                                  "{:+.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{}",
-                                  name, n, rot_sum / n, rot_max, abs_mean.x(), abs_mean.y(),
-                                  abs_mean.z(), mean.x(), mean.y(), mean.z(), sd.x(), sd.y(),
-                                  sd.z(), worst, lost)
-                          .c_str());
+  std::printf("%s\n",
+              fmt::format("{}\t{}\t{:.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{:+.4f}\t{:+.4f}\t"
+                          "{:+.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{}",
+                          name, n, rot_sum / n, rot_max, abs_mean.x(), abs_mean.y(), abs_mean.z(),
+                          mean.x(), mean.y(), mean.z(), sd.x(), sd.y(), sd.z(), worst, lost)
+                  .c_str());
+}
+
+// The rotation errors φ (deg, one per frame): mean, standard deviation per axis, mean step.
+void PrintRotationVectors(const std::string& name, const std::vector<Eigen::Vector3d>& phi) {
+  const int n = static_cast<int>(phi.size());
+  if (n < 2) return;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : phi) mean += v;
+  mean /= n;
+  Eigen::Vector3d var = Eigen::Vector3d::Zero();
+  double step = 0.0;
+  for (int i = 0; i < n; ++i) {
+    var += (phi[i] - mean).cwiseAbs2();
+    if (i > 0) step += (phi[i] - phi[i - 1]).norm();
+  }
+  const Eigen::Vector3d sd = (var / (n - 1)).cwiseSqrt();
+  std::printf(
+      "%s\n",
+      fmt::format("{}:rotation\t{:+.4f}\t{:+.4f}\t{:+.4f}\t{:.4f}\t{:.4f}\t{:.4f}\t{:.4f}", name,
+                  mean.x(), mean.y(), mean.z(), sd.x(), sd.y(), sd.z(), step / (n - 1))
+          .c_str());
 }
 
 }  // namespace
@@ -62,6 +90,8 @@ int main(int argc, char** argv) {
   app.add_option("sequence", seq_dir)->required();
   app.add_option("annotation", ann_dir)->required();
   app.add_option("--blocks", blocks, "also per block of N consecutive frames");
+  bool rotation_vectors = false;
+  app.add_flag("--rotation", rotation_vectors, "also the rotation error's bias and jitter");
   CLI11_PARSE(app, argc, argv);
 
   auto seq = bcot::LoadSequence(seq_dir, /*require_init_pose=*/false);
@@ -86,15 +116,17 @@ int main(int argc, char** argv) {
   for (int view = 0; view < seq->rig.size(); ++view) {
     const auto& rc = seq->rig[view];
     std::vector<double> rot;
-    std::vector<Eigen::Vector3d> err;
+    std::vector<Eigen::Vector3d> err, phi;
     for (size_t i = 0; i < truth->size(); ++i) {
       const Eigen::Isometry3d g = rc.cam_from_rig * truth->at(i);
       const Eigen::Isometry3d t = rc.cam_from_rig * est->at(i);
       const Eigen::AngleAxisd d(t.linear() * g.linear().transpose());
       rot.push_back(std::abs(d.angle()) * 180.0 / M_PI);
+      phi.push_back(d.angle() * d.axis() * 180.0 / M_PI);
       err.push_back(t * centre - g * centre);
     }
     PrintStats(rc.camera.name, rot, err);
+    if (rotation_vectors) PrintRotationVectors(rc.camera.name, phi);
     for (int b = 0; blocks > 0 && b * blocks < static_cast<int>(rot.size()); ++b) {
       const int lo = b * blocks, hi = std::min<int>(rot.size(), lo + blocks);
       PrintStats(fmt::format("{}#{}", rc.camera.name, b),
