@@ -1,5 +1,5 @@
 // bcot batch <root> --out DIR [--config FILE] [--set section.key=value]... [--jobs N]
-//            [--shard k/N] [--force] [--in-process]
+//            [--shard k/N] [--force] [--in-process] [--image-cache-mb N]
 // Annotates every sequence under <root> (see bcot/annotate/batch.h) with a live progress line on
 // stderr, each sequence in its own `bcot annotate` process (child_process_runner.h) unless
 // --in-process; exit 0 when every sequence succeeded, 1 when any failed, 2 for usage/config
@@ -29,6 +29,7 @@ struct BatchFlags {
   bool force = false;
   bool quiet = false;
   bool in_process = false;
+  size_t image_cache_mb = BatchOptions().image_cache_mb;
 };
 
 std::string FormatProgress(const BatchProgress& p) {
@@ -51,6 +52,7 @@ int RunBatchCommand(const BatchFlags& flags) {
   options.annotate = *annotate;
   options.jobs = flags.jobs;
   options.force = flags.force;
+  options.image_cache_mb = flags.image_cache_mb;
   if (!flags.in_process) {
     std::error_code error;
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
@@ -59,7 +61,8 @@ int RunBatchCommand(const BatchFlags& flags) {
                               "); use --in-process");
       return 1;
     }
-    options.runner = MakeChildProcessRunner(self.string());
+    options.runner = MakeChildProcessRunner(
+        self.string(), {"--image-cache-mb", std::to_string(flags.image_cache_mb)});
   }
   const Status shard = ParseShard(flags.shard, &options);
   if (!shard.ok()) {
@@ -112,6 +115,12 @@ void AddBatchCommand(CLI::App& app, int* exit_code) {
       ->add_option("--shard", flags->shard,
                    "Process shard k of N (0 <= k < N), e.g. $SLURM_ARRAY_TASK_ID/N")
       ->capture_default_str();
+  command
+      ->add_option("--image-cache-mb", flags->image_cache_mb,
+                   "Decoded frames each running sequence keeps in memory (MiB) for its quality "
+                   "check; 0 = none")
+      ->capture_default_str()
+      ->check(CLI::Range(size_t{0}, size_t{1} << 30));
   command->add_flag("--force", flags->force, "Redo sequences whose DONE matches");
   command->add_flag("--quiet", flags->quiet, "No progress on stderr");
   command->add_flag("--in-process", flags->in_process,

@@ -309,6 +309,8 @@ StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_d
   report([](BatchProgress&) {});
 
   const int jobs = options.jobs > 0 ? options.jobs : tbb::task_arena::automatic;
+  AnnotateInputs inputs;
+  inputs.image_cache_mb = options.image_cache_mb;
   tbb::task_arena arena(jobs);
   arena.execute([&] {
     tbb::parallel_for(
@@ -335,7 +337,7 @@ StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_d
               outcome = options.runner ? options.runner(job.sequence_dir, job.annotation_dir,
                                                         options.annotate, on_frame)
                                        : AnnotateSequenceDir(job.sequence_dir, job.annotation_dir,
-                                                             options.annotate, on_frame);
+                                                             options.annotate, inputs, on_frame);
             } catch (const std::exception& exception) {
               outcome = Status::Internal(fmt::format("unexpected exception: {}", exception.what()));
             }

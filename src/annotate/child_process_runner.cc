@@ -112,16 +112,19 @@ StatusOr<int> RunChild(const std::vector<std::string>& argv, ChildOutput* output
 
 }  // namespace
 
-SequenceRunner MakeChildProcessRunner(const std::string& executable) {
-  return [executable](const std::string& sequence_dir, const std::string& annotation_dir,
-                      const AnnotateOptions& options,
-                      const AnnotateProgress& progress) -> StatusOr<AnnotationOutcome> {
+SequenceRunner MakeChildProcessRunner(const std::string& executable,
+                                      const std::vector<std::string>& extra_arguments) {
+  return [executable, extra_arguments](
+             const std::string& sequence_dir, const std::string& annotation_dir,
+             const AnnotateOptions& options,
+             const AnnotateProgress& progress) -> StatusOr<AnnotationOutcome> {
     const std::string config = annotation_dir + "/.batch_config.yaml";
     BCOT_RETURN_IF_ERROR(WriteFileAtomic(config, FormatAnnotateOptions(options)));
     ChildOutput output(progress);
-    const StatusOr<int> status = RunChild(
-        {executable, "annotate", sequence_dir, "--out", annotation_dir, "--config", config},
-        &output);
+    std::vector<std::string> arguments = {executable,     "annotate", sequence_dir, "--out",
+                                          annotation_dir, "--config", config};
+    arguments.insert(arguments.end(), extra_arguments.begin(), extra_arguments.end());
+    const StatusOr<int> status = RunChild(arguments, &output);
     std::error_code ignored;
     std::filesystem::remove(config, ignored);
     if (!status.ok()) return status.status();

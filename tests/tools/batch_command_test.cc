@@ -172,9 +172,14 @@ TEST_F(BatchCommandTest, ShardsConfigErrorsAndReport) {
   EXPECT_THAT(output, HasSubstr("--shard 4/4"));
   EXPECT_EQ(test::RunCommand(Batch("--out " + out + " --set frame.roundz=1"), &output), 2);
   EXPECT_THAT(output, HasSubstr("roundz"));
-  // Shard 1 of 2 of the sorted corpus (group0/seq0, group0/seq2, group1/seq1).
-  ASSERT_EQ(test::RunCommand(Batch("--out " + out + " --shard 1/2 --set frame.rounds=1"), &output),
-            0)
+  EXPECT_EQ(test::RunCommand(Batch("--out " + out + " --image-cache-mb -1"), &output), 2);
+  EXPECT_THAT(output, HasSubstr("--image-cache-mb"));
+  // Shard 1 of 2 of the sorted corpus (group0/seq0, group0/seq2, group1/seq1); the child
+  // processes take the image cache's size.
+  ASSERT_EQ(
+      test::RunCommand(
+          Batch("--out " + out + " --shard 1/2 --set frame.rounds=1 --image-cache-mb 0"), &output),
+      0)
       << output;
   EXPECT_TRUE(fs::exists(out + "/group0/seq2/DONE"));
   EXPECT_FALSE(fs::exists(out + "/group0/seq0/DONE"));

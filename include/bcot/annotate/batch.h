@@ -23,6 +23,7 @@
 // then writes one summary over every annotated sequence.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -50,6 +51,10 @@ struct BatchOptions {
   int shard_count = 1;
   // Redo every sequence, even those whose DONE matches.
   bool force = false;
+  // Decoded frames each running sequence keeps for its quality check (MiB; AnnotateInputs::
+  // image_cache_mb). Used by the in-process annotation; a `runner` gets it its own way
+  // (MakeChildProcessRunner's arguments).
+  size_t image_cache_mb = AnnotateInputs().image_cache_mb;
   // How a sequence is annotated; empty = AnnotateSequenceDir in this process. `bcot batch`
   // uses MakeChildProcessRunner (bcot/annotate/child_process_runner.h): one process per
   // sequence, so a crash is that sequence's failure only.

@@ -14,12 +14,15 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "bcot/annotate/batch.h"
 
 namespace bcot {
 
-// `executable` is the bcot binary (e.g. /proc/self/exe resolved).
-SequenceRunner MakeChildProcessRunner(const std::string& executable);
+// `executable` is the bcot binary (e.g. /proc/self/exe resolved); `extra_arguments` are
+// appended to every child's `annotate` command line (e.g. {"--image-cache-mb", "512"}).
+SequenceRunner MakeChildProcessRunner(const std::string& executable,
+                                      const std::vector<std::string>& extra_arguments = {});
 
 }  // namespace bcot
