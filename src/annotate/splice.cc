@@ -8,6 +8,7 @@
 #include "bcot/annotate/done_file.h"
 #include "bcot/core/annotation_poses.h"
 #include "bcot/core/file_util.h"
+#include "bcot/core/image_cache.h"
 #include "bcot/quality/quality_files.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
@@ -102,8 +103,10 @@ StatusOr<AnnotationOutcome> SpliceFrames(const std::string& sequence_dir,
                         RecordedImageResponse(out_dir, options.tracker.frame.edge.lines.response));
   AnnotateOptions resolved = options;
   resolved.tracker.frame.edge.lines.response = image_response.response;
+  // The quality check reads the range's frames again (and the others once).
+  DecodedImageCache images(inputs.image_cache_mb << 20);
   BCOT_ASSIGN_OR_RETURN(const SequenceAnnotation range,
-                        AnnotateFrames(sequence, caster, resolved, span, progress));
+                        AnnotateFrames(sequence, caster, resolved, span, progress, {}, &images));
 
   // Splice in memory, measure, then replace the files with DONE last.
   std::vector<Eigen::Isometry3d> rig_from_object = span.existing_rig_from_object;
@@ -119,7 +122,7 @@ StatusOr<AnnotationOutcome> SpliceFrames(const std::string& sequence_dir,
   }
   BCOT_ASSIGN_OR_RETURN(const QualityReport quality,
                         MeasureQuality(sequence, caster, rig_from_object, range.view_names,
-                                       options.quality, image_response.response));
+                                       options.quality, image_response.response, &images));
   SequenceAnnotation whole;  // what WriteAnnotation needs besides frames.csv
   whole.rig_from_object = rig_from_object;
   whole.image_response = image_response;
