@@ -25,7 +25,6 @@
 #include "bcot/core/annotation_poses.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/image_cache.h"
-#include "bcot/core/image_io.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/se3.h"
 #include "bcot/optim/multi_view_tracker.h"
@@ -159,9 +158,7 @@ StatusOr<std::vector<cv::Mat3b>> ReadFrameImages(const Sequence& sequence,
                                                  DecodedImageCache* cache) {
   std::vector<StatusOr<cv::Mat3b>> read(rig_indices.size(), Status::Internal("not read"));
   tbb::parallel_for(size_t{0}, rig_indices.size(), [&](size_t v) {
-    const std::string& path = sequence.image_paths[rig_indices[v]][frame];
-    read[v] = cache != nullptr ? cache->Read(path, views[v].camera)
-                               : ReadCameraImage(path, views[v].camera);
+    read[v] = ReadCameraImage(sequence.image_paths[rig_indices[v]][frame], views[v].camera, cache);
   });
   std::vector<cv::Mat3b> images;
   for (StatusOr<cv::Mat3b>& image : read) {
@@ -576,7 +573,7 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
                         Mesh::Load(sequence.object.mesh_path, sequence.object.unit_to_mm));
   const RayCaster caster(mesh);
   // The quality check reads the frames again, after the window has settled the poses.
-  DecodedImageCache images(inputs.image_cache_mb << 20);
+  DecodedImageCache images(inputs.image_cache_bytes());
   BCOT_ASSIGN_OR_RETURN(const SequenceAnnotation annotation,
                         AnnotateSequence(sequence, caster, options, progress, {}, &images));
   BCOT_RETURN_IF_ERROR(WriteAnnotation(out_dir, sequence, options, input_hash, annotation));

@@ -104,7 +104,7 @@ StatusOr<AnnotationOutcome> SpliceFrames(const std::string& sequence_dir,
   AnnotateOptions resolved = options;
   resolved.tracker.frame.edge.lines.response = image_response.response;
   // The quality check reads the range's frames again (and the others once).
-  DecodedImageCache images(inputs.image_cache_mb << 20);
+  DecodedImageCache images(inputs.image_cache_bytes());
   BCOT_ASSIGN_OR_RETURN(const SequenceAnnotation range,
                         AnnotateFrames(sequence, caster, resolved, span, progress, {}, &images));
 

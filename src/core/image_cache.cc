@@ -1,7 +1,5 @@
 #include "bcot/core/image_cache.h"
 
-#include <utility>
-
 #include "bcot/core/image_io.h"
 
 namespace bcot {
@@ -40,6 +38,11 @@ size_t DecodedImageCache::bytes() const {
 size_t DecodedImageCache::hits() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   return hits_;
+}
+
+StatusOr<cv::Mat3b> ReadCameraImage(const std::string& path, const Camera& camera,
+                                    DecodedImageCache* cache) {
+  return cache != nullptr ? cache->Read(path, camera) : ReadCameraImage(path, camera);
 }
 
 }  // namespace bcot

@@ -10,7 +10,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bcot/core/image_cache.h"
-#include "bcot/core/image_io.h"
 #include "bcot/optim/silhouette.h"
 #include "bcot/quality/boundary_search.h"
 #include "bcot/quality/rigid_motion_fit.h"
@@ -50,9 +49,7 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
                                        const Eigen::Vector3d& object_centre,
                                        double object_diameter_mm, const QualityOptions& options,
                                        const LinearTable& linear, uint32_t seed) {
-  BCOT_ASSIGN_OR_RETURN(const cv::Mat3b image, images != nullptr
-                                                   ? images->Read(image_path, camera)
-                                                   : ReadCameraImage(image_path, camera));
+  BCOT_ASSIGN_OR_RETURN(const cv::Mat3b image, ReadCameraImage(image_path, camera, images));
   ViewFrameQuality quality;
   const Silhouette silhouette =
       RenderSilhouetteContour(caster, camera, cam_from_object, QualityContourOptions(options));

@@ -169,6 +169,7 @@ struct AnnotateInputs {
   // decode them again (image_cache.h); 0 = none. Changes no result, so it is not an option of
   // the config (nor of its hash). 1024: 230 binocular 960×768 frames.
   size_t image_cache_mb = 1024;
+  size_t image_cache_bytes() const { return image_cache_mb << 20; }
 };
 
 // LoadSequence with the keyframes of `inputs`; with `require_anchor`, kNotFound when the

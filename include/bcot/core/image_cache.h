@@ -41,4 +41,8 @@ class DecodedImageCache {
   size_t hits_ = 0;
 };
 
+// `cache->Read(path, camera)`, or ReadCameraImage(path, camera) without a cache.
+StatusOr<cv::Mat3b> ReadCameraImage(const std::string& path, const Camera& camera,
+                                    DecodedImageCache* cache);
+
 }  // namespace bcot
