@@ -11,7 +11,7 @@
 // a difference between opposite bins (a shift) or from all bins together (a scale, i.e. depth).
 //
 // Usage: edge_bias_probe --sequence DIR [--config FILE] [--set key=value]... [--frames N]
-//                        [--dump FILE] [--dump-fits FILE] [--blur-exposure E]
+//                        [--dump FILE] [--dump-fits FILE] [--blur-exposure E] [--coverage-mask]
 // --dump writes one line per measured edge line: camera, frame, bin, centre, normal, μ, σ, then
 // the linear RGB profile (window_px/step_px samples each side, R G B per sample).
 // --blur-exposure E (with --dump; frames 1 .. N−2): each dump line ends with "BLUR" and the
@@ -20,6 +20,10 @@
 // averages (CamFromTemplateOverExposure, ContourCrossingsOverExposure).
 // --dump-fits writes one line per measured edge line: camera, frame, bin, then the profile fit's
 // μ, σ_μ (unfloored), blur width w (px) and step b (EdgeFit; FitEdgeAcross again on the line).
+// --coverage-mask measures on gt/mask/<camera>/NNNNNN.png instead of the images (written by
+// scripts/pbr_synth.sh: Blender's anti-aliased object coverage, 16 bit), mapped to a grey object
+// on a grey background and read as linear: what the geometry, the pixel conventions and the fit
+// alone make of the offsets, with no light, material or noise.
 // Prints per camera: lines measured / candidates, and per bin count, mean μ and its standard
 // error (px); then the quantiles of μ per bin over all cameras.
 #include <fmt/format.h>
@@ -30,6 +34,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -81,6 +87,22 @@ struct Accumulator {
     return std::sqrt(std::max(0.0, variance) / count);
   }
 };
+
+// gt/mask/<camera>/NNNNNN.png (16-bit coverage c in [0, 1]) as the 8-bit grey image 50 + 150·c:
+// an object of linear level 0.78 on a background of 0.2, both clear of edge.clip_level.
+bcot::StatusOr<cv::Mat3b> ReadCoverageMask(const std::string& sequence_dir,
+                                           const std::string& camera, int frame) {
+  const std::string path = fmt::format("{}/gt/mask/{}/{:06d}.png", sequence_dir, camera, frame);
+  const cv::Mat mask = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (mask.empty() || mask.type() != CV_16UC1) {
+    return bcot::Status::IoError(path + ": not found or not a 16-bit one-channel coverage mask");
+  }
+  cv::Mat grey;
+  mask.convertTo(grey, CV_8U, 150.0 / 65535.0, 50.0);
+  cv::Mat3b image;
+  cv::cvtColor(grey, image, cv::COLOR_GRAY2BGR);
+  return image;
+}
 
 int Fail(const std::string& message) {
   std::fprintf(stderr, "edge_bias_probe: %s\n", message.c_str());
@@ -182,6 +204,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> candidate_tables;
   app.add_option("--candidate-table", candidate_tables,
                  "With --response-frames: also score this response table (repeatable)");
+  bool coverage_mask = false;
+  app.add_flag("--coverage-mask", coverage_mask,
+               "Measure on gt/mask (the renderer's anti-aliased object coverage) instead of the "
+               "images");
   CLI11_PARSE(app, argc, argv);
 
   const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, overrides);
@@ -196,6 +222,7 @@ int main(int argc, char** argv) {
   // directly, the lines are decoded as sRGB unless --set edge.response=... says otherwise.
   FrameProblemOptions frame = options->tracker.frame;
   if (!frame.edge.lines.response.IsResolved()) frame.edge.lines.response = ImageResponse();
+  if (coverage_mask) frame.edge.lines.response = ImageResponse::Gamma(1.0);
   const EdgeLineOptions& edge = frame.edge.lines;
   const int frames =
       max_frames > 0 ? std::min(max_frames, sequence->num_frames) : sequence->num_frames;
@@ -256,7 +283,9 @@ int main(int argc, char** argv) {
     std::array<Accumulator, 4> bins{};
     int candidates = 0, measured = 0;
     for (int f = 0; f < frames; ++f) {
-      const StatusOr<cv::Mat3b> image = ReadCameraImage(sequence->image_paths[v][f], camera.camera);
+      const StatusOr<cv::Mat3b> image =
+          coverage_mask ? ReadCoverageMask(sequence_dir, camera.camera.name, f)
+                        : ReadCameraImage(sequence->image_paths[v][f], camera.camera);
       if (!image.ok()) return Fail(image.status().message());
       const Eigen::Isometry3d rig_from_objcentre = loaded->RigFromObjcentre(f);
       std::optional<ExposurePoses> exposure_poses;
