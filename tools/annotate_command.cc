@@ -57,6 +57,9 @@ int RunAnnotate(const AnnotateFlags& flags) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr, "bcot annotate: wrote %s in %.1f s\n", flags.out_dir.c_str(), seconds);
+  for (const std::string& note : outcome->notes) {
+    std::fprintf(stderr, "bcot annotate: note: %s\n", note.c_str());
+  }
   // A rejection says why (the first reason: view, bad frames, worst error or an invisible
   // boundary); an acceptance its worst error.
   const QualityVerdict& verdict = outcome->verdict;

@@ -350,6 +350,7 @@ StatusOr<BatchResult> RunBatch(const std::string& root, const std::string& out_d
               FillVerdict(outcome->verdict, &entry);
               log.Line(fmt::format("done in {:.1f} s: {}", entry.seconds,
                                    entry.accepted ? "accepted" : "rejected"));
+              for (const std::string& note : outcome->notes) log.Line("note: " + note);
             } else {
               entry.outcome = BatchOutcome::kFailed;
               entry.error = status.message();

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bcot/annotate/done_file.h"
@@ -38,6 +39,8 @@ class ChildOutput {
   }
   void Finish() { EndSegment(); }
   const std::string& last_line() const { return last_line_; }
+  // The child's notes (AnnotationOutcome::notes), without their "bcot annotate: note: " prefix.
+  const std::vector<std::string>& notes() const { return notes_; }
 
  private:
   void EndSegment() {
@@ -48,6 +51,9 @@ class ChildOutput {
       if (progress_) progress_(done, total);
     } else if (segment_.find_first_not_of(" \t") != std::string::npos) {
       last_line_ = segment_;
+      constexpr std::string_view kNotePrefix = "bcot annotate: note: ";
+      if (segment_.rfind(kNotePrefix, 0) == 0)
+        notes_.push_back(segment_.substr(kNotePrefix.size()));
     }
     segment_.clear();
   }
@@ -55,6 +61,7 @@ class ChildOutput {
   const AnnotateProgress& progress_;
   std::string segment_;
   std::string last_line_;
+  std::vector<std::string> notes_;
 };
 
 std::string SignalName(int signal) {
@@ -152,6 +159,7 @@ SequenceRunner MakeChildProcessRunner(const std::string& executable,
     outcome.verdict = verdict;
     outcome.frames = done.frames;
     outcome.failed_frames = done.failed_frames;
+    outcome.notes = output.notes();
     return outcome;
   };
 }

@@ -48,7 +48,7 @@ Status CheckCompleteImageFile(const std::string& path, const std::vector<unsigne
 }
 
 // libjpeg reports a fatal error through error_exit, which must not return (its default exits
-// the process): jump back into DecodeJpegBgr.
+// the process): jump back into ReadJpeg.
 struct JpegErrorManager {
   jpeg_error_mgr manager;
   std::jmp_buf jump;
@@ -69,15 +69,20 @@ bool HasExif(const jpeg_decompress_struct& info) {
   return false;
 }
 
-// Decodes a JPEG straight into BGR rows (libjpeg-turbo's JCS_EXT_BGR output): the pixels of
-// cv::imdecode(IMREAD_COLOR) — the same library, the same default IDCT and upsampling — without
-// OpenCV's RGB-to-BGR pass, which costs as much again as the decode (scripts/bench_image_read.sh,
-// 960×768: 2.1 against 4.7 ms). False, leaving the decode to cv::imdecode, for what this does not
-// treat as imdecode does: a libjpeg error (a CMYK file, corrupt headers; imdecode then reports or
-// handles it) and an Exif block (imdecode turns the image by its orientation tag). Warnings about
-// corrupt data go to stderr as under imdecode. Only trivially destructible locals live across
-// setjmp.
-bool DecodeJpegBgr(const std::vector<unsigned char>& bytes, cv::Mat3b* image) {
+// What ReadJpeg reads of a JPEG: the frame header only, or the pixels too.
+enum class JpegRead { kHeader, kPixels };
+
+// Reads the JPEG in `bytes` with libjpeg. Always its header: `*subsampled` (when not null) says
+// whether its chroma is stored below luma's resolution. With kPixels also its pixels, straight
+// into BGR rows (libjpeg-turbo's JCS_EXT_BGR output): the pixels of cv::imdecode(IMREAD_COLOR) —
+// the same library, the same default IDCT and upsampling — without OpenCV's RGB-to-BGR pass,
+// which costs as much again as the decode (scripts/bench_image_read.sh, 960×768: 2.1 against
+// 4.7 ms). False on a libjpeg error (a CMYK file, corrupt headers) and, with kPixels, on an Exif
+// block: the decode is then left to cv::imdecode, which reports or handles the first and turns
+// the image by the second's orientation tag. Warnings about corrupt data go to stderr as under
+// imdecode. Only trivially destructible locals live across setjmp.
+bool ReadJpeg(const std::vector<unsigned char>& bytes, JpegRead read, bool* subsampled,
+              cv::Mat3b* image) {
   jpeg_decompress_struct info;
   JpegErrorManager errors;
   info.err = jpeg_std_error(&errors.manager);
@@ -90,9 +95,17 @@ bool DecodeJpegBgr(const std::vector<unsigned char>& bytes, cv::Mat3b* image) {
   jpeg_mem_src(&info, bytes.data(), static_cast<unsigned long>(bytes.size()));
   jpeg_save_markers(&info, JPEG_APP0 + 1, 0xFFFF);
   jpeg_read_header(&info, TRUE);
-  if (HasExif(info)) {
+  if (subsampled != nullptr) {
+    *subsampled = false;
+    for (int c = 1; c < info.num_components; ++c) {
+      *subsampled = *subsampled ||
+                    info.comp_info[c].h_samp_factor < info.comp_info[0].h_samp_factor ||
+                    info.comp_info[c].v_samp_factor < info.comp_info[0].v_samp_factor;
+    }
+  }
+  if (read == JpegRead::kHeader || HasExif(info)) {
     jpeg_destroy_decompress(&info);
-    return false;
+    return read == JpegRead::kHeader;
   }
   info.out_color_space = JCS_EXT_BGR;
   jpeg_start_decompress(&info);
@@ -108,6 +121,22 @@ bool DecodeJpegBgr(const std::vector<unsigned char>& bytes, cv::Mat3b* image) {
 
 }  // namespace
 
+StatusOr<ChromaSampling> ReadChromaSampling(const std::string& path) {
+  const StatusOr<std::string> file = ReadFileContents(path);
+  if (!file.ok()) {
+    return Status::InvalidInput(path + ": cannot read the image (" + file.status().message() + ")");
+  }
+  const std::vector<unsigned char> bytes(file->begin(), file->end());
+  const bool is_jpeg =
+      bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+  if (!is_jpeg) return ChromaSampling::kNotJpeg;
+  bool subsampled = false;
+  if (!ReadJpeg(bytes, JpegRead::kHeader, &subsampled, nullptr)) {
+    return Status::InvalidInput(path + ": corrupt JPEG header");
+  }
+  return subsampled ? ChromaSampling::kSubsampled : ChromaSampling::kFull;
+}
+
 StatusOr<cv::Mat3b> ReadColorImage(const std::string& path) {
   const StatusOr<std::string> file = ReadFileContents(path);
   if (!file.ok()) {
@@ -119,7 +148,7 @@ StatusOr<cv::Mat3b> ReadColorImage(const std::string& path) {
   const bool is_jpeg =
       bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
   cv::Mat3b jpeg;
-  if (is_jpeg && DecodeJpegBgr(bytes, &jpeg)) return jpeg;
+  if (is_jpeg && ReadJpeg(bytes, JpegRead::kPixels, nullptr, &jpeg)) return jpeg;
   const cv::Mat image = cv::imdecode(bytes, cv::IMREAD_COLOR);
   if (image.empty()) return Status::InvalidInput(path + ": cannot read the image");
   return cv::Mat3b(image);

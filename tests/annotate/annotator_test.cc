@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 
 #include "bcot/annotate/done_file.h"
 #include "bcot/core/file_util.h"
@@ -105,6 +106,26 @@ TEST_F(AnnotatorTest, MonocularSelectionUsesOneCamera) {
   const StatusOr<SequenceAnnotation> missing = AnnotateSequence(*sequence, options);
   ASSERT_EQ(missing.status().code(), StatusCode::kInvalidConfig);
   EXPECT_THAT(missing.status().message(), HasSubstr("no camera 'cam7' in the rig"));
+}
+
+// One note names every camera whose frames are JPEG with subsampled chroma; PNG frames and
+// unreadable files give none (the solve reports those).
+TEST(CaptureNotesTest, NamesTheCamerasWithSubsampledChroma) {
+  test::TempDir dir;
+  cv::Mat3b image(32, 48, cv::Vec3b(40, 120, 200));
+  ASSERT_TRUE(cv::imwrite(dir.File("a.jpg"), image));  // OpenCV writes 4:2:0
+  ASSERT_TRUE(cv::imwrite(dir.File("a.png"), image));
+  Sequence sequence;
+  for (const char* name : {"cam0", "cam1", "cam2"}) {
+    sequence.rig.Add({Camera(name, 48, 32, 40.0, 40.0, 23.5, 15.5), Eigen::Isometry3d::Identity()});
+  }
+  sequence.image_paths = {{dir.File("a.jpg")}, {dir.File("a.png")}, {dir.File("a.jpg")}};
+  const std::vector<std::string> notes = CaptureNotes(sequence);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_THAT(notes[0], ::testing::StartsWith("cam0, cam2: JPEG frames with subsampled chroma"));
+
+  sequence.image_paths = {{dir.File("a.png")}, {dir.File("a.png")}, {dir.File("missing.jpg")}};
+  EXPECT_TRUE(CaptureNotes(sequence).empty());
 }
 
 TEST_F(AnnotatorTest, InputHashChangesWithTheInputs) {

@@ -206,7 +206,8 @@ TEST_F(BatchRunTest, ChildProcessesIsolateACrashingSequence) {
   const std::string wrapper = work.File("bcot_or_crash.sh");
   test::WriteText(wrapper,
                   "#!/bin/sh\ncase \"$2\" in\n  */poison) echo 'bcot annotate: frame 1/3'; "
-                  "kill -SEGV $$ ;;\nesac\nexec " +
+                  "kill -SEGV $$ ;;\n  */lab/s1) echo 'bcot annotate: note: cam0: a note' >&2 ;;"
+                  "\nesac\nexec " +
                       test::BcotBinary() + " \"$@\"\n");
   fs::permissions(wrapper, fs::perms::owner_all);
   BatchOptions options = TrackOptions();
@@ -228,6 +229,8 @@ TEST_F(BatchRunTest, ChildProcessesIsolateACrashingSequence) {
   EXPECT_EQ(result->sequences[3].relative_path, "poison");
   EXPECT_EQ(result->sequences[3].outcome, BatchOutcome::kFailed);
   EXPECT_THAT(result->sequences[3].error, HasSubstr("killed by signal 11"));
+  // A note of the child (AnnotationOutcome::notes) reaches the sequence's batch log.
+  EXPECT_THAT(*ReadTextFile(out + "/lab/s1/batch.log"), HasSubstr("note: cam0: a note"));
   EXPECT_FALSE(fs::exists(out + "/poison/DONE"));
   const nlohmann::json summary = nlohmann::json::parse(*ReadTextFile(out + "/summary.json"));
   EXPECT_EQ(summary["failed"], 2);

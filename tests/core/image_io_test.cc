@@ -123,5 +123,38 @@ TEST(ImageIoTest, TruncatedFilesAreErrorsNamingTheFile) {
   EXPECT_THAT(folder.status().message(), HasSubstr("folder.jpg"));
 }
 
+// The chroma sampling comes from the frame header: OpenCV writes colour JPEGs 4:2:0; a grey
+// JPEG has no chroma; a header declaring luma at 1×1 (4:4:4) is full; PNG is not a JPEG.
+TEST(ReadChromaSamplingTest, ReadsTheJpegFrameHeader) {
+  test::TempDir dir;
+  ASSERT_TRUE(cv::imwrite(dir.File("a.png"), Gradient(64, 48)));
+  ASSERT_TRUE(cv::imwrite(dir.File("a.jpg"), Gradient(64, 48)));
+  cv::Mat1b grey;
+  cv::cvtColor(Gradient(64, 48), grey, cv::COLOR_BGR2GRAY);
+  ASSERT_TRUE(cv::imwrite(dir.File("grey.jpg"), grey));
+  EXPECT_EQ(ReadChromaSampling(dir.File("a.png")).value(), ChromaSampling::kNotJpeg);
+  EXPECT_EQ(ReadChromaSampling(dir.File("a.jpg")).value(), ChromaSampling::kSubsampled);
+  EXPECT_EQ(ReadChromaSampling(dir.File("grey.jpg")).value(), ChromaSampling::kFull);
+
+  // The same colour file with its baseline frame header (SOF0: FF C0, length, precision,
+  // height, width, 3 components of id, sampling HV, table) saying 1×1 for luma: 4:4:4.
+  StatusOr<std::string> bytes = ReadFileContents(dir.File("a.jpg"));
+  ASSERT_TRUE(bytes.ok());
+  const size_t sof = bytes->find("\xFF\xC0");
+  ASSERT_NE(sof, std::string::npos);
+  ASSERT_EQ(static_cast<unsigned char>((*bytes)[sof + 9]), 3u);      // components
+  ASSERT_EQ(static_cast<unsigned char>((*bytes)[sof + 11]), 0x22u);  // luma 2×2
+  (*bytes)[sof + 11] = 0x11;
+  test::WriteText(dir.File("full.jpg"), *bytes);
+  EXPECT_EQ(ReadChromaSampling(dir.File("full.jpg")).value(), ChromaSampling::kFull);
+
+  test::WriteText(dir.File("broken.jpg"), std::string("\xFF\xD8\xFF\xE0") + " not a header");
+  const StatusOr<ChromaSampling> broken = ReadChromaSampling(dir.File("broken.jpg"));
+  EXPECT_EQ(broken.status().code(), StatusCode::kInvalidInput);
+  EXPECT_THAT(broken.status().message(), HasSubstr("broken.jpg: corrupt JPEG header"));
+  EXPECT_THAT(ReadChromaSampling(dir.File("missing.jpg")).status().message(),
+              HasSubstr("missing.jpg: cannot read"));
+}
+
 }  // namespace
 }  // namespace bcot

@@ -144,7 +144,14 @@ struct AnnotationOutcome {
   QualityVerdict verdict;
   int frames = 0;
   int failed_frames = 0;
+  // Advice about the input that does not stop the run (CaptureNotes), for the user to read.
+  std::vector<std::string> notes;
 };
+
+// Notes about how `sequence` was captured that limit the precision a user can expect: today,
+// cameras whose first frame is a JPEG with subsampled chroma (ReadChromaSampling), named
+// together in one note. Files that cannot be read are left to the solve to report.
+std::vector<std::string> CaptureNotes(const Sequence& sequence);
 
 // The end of a run, after the poses, frames.csv and config.resolved.yaml are written: the
 // quality files of `quality` (measured on `rig_from_object`; its provenance is set here), then
