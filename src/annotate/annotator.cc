@@ -603,9 +603,9 @@ std::vector<std::string> CaptureNotes(const Sequence& sequence) {
   if (subsampled.empty()) return {};
   return {fmt::format(
       "{}: JPEG frames with subsampled chroma (4:2:0 or 4:2:2): colour is kept at half "
-      "resolution, and edges between colours of similar brightness are located less precisely "
-      "(a small coloured object lost a third of its precision in our tests); record PNG or 4:4:4 "
-      "JPEG if you can (docs/notes/issue12_coverage_floor.md)",
+      "resolution, which blurs and shifts the edges the annotation is measured on (on our renders "
+      "it cost a third of the precision); record PNG or 4:4:4 JPEG if you can "
+      "(docs/notes/issue12_coverage_floor.md)",
       fmt::join(subsampled, ", "))};
 }
 
