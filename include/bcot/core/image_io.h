@@ -22,7 +22,7 @@ StatusOr<cv::Mat3b> ReadCameraImage(const std::string& path, const Camera& camer
 // How an image file stores colour. A JPEG keeps luma (Y) at full resolution and its two
 // chroma planes (Cb, Cr) either at full resolution too (4:4:4) or subsampled (4:2:2, 4:2:0:
 // colour at half resolution, what most cameras and codecs write). Subsampled chroma blurs and
-// shifts edges of hue (docs/notes/issue12_coverage_floor.md).
+// shifts the edges of colour the annotation measures (docs/notes/issue12_coverage_floor.md).
 enum class ChromaSampling {
   kNotJpeg,     // not a JPEG (PNG and other lossless formats keep every channel)
   kFull,        // JPEG 4:4:4, or a single-channel JPEG
