@@ -2,6 +2,7 @@
 """A copy of a PNG sequence with one of JPEG's two losses applied to its frames, the other not.
 
 Usage: /usr/bin/python3 tests/bench/jpeg_variants.py SRC DST subsample
+       /usr/bin/python3 tests/bench/jpeg_variants.py SRC DST subsample_linear
        /usr/bin/python3 tests/bench/jpeg_variants.py SRC DST quantise [--quality 90]
 
 SRC's frames must be PNG (scripts/pbr_synth.sh SPEC SRC --set sensor.jpeg_quality=0). Each
@@ -9,6 +10,9 @@ frame goes to JFIF's full-range YCbCr and back, in between:
 - subsample: 4:2:0 chroma as libjpeg makes and decodes it (Cb and Cr averaged over 2x2 pixels,
   then brought back by libjpeg's "fancy" upsampling, weights 9/3/3/1 of the nearest four
   half-resolution samples), no quantisation;
+- subsample_linear: the same averaging and upsampling of the same colour matrix applied to
+  linear light instead of the sRGB codes (no codec does this; it separates what the averaging's
+  geometry costs from what averaging gamma-encoded values adds);
 - quantise: every channel at full resolution through an 8x8 DCT quantised with the standard
   luminance and chrominance tables scaled to --quality, as baseline JPEG 4:4:4 does.
 The frames stay PNG files, so only the named loss is in them. Annotated like SRC (`bcot
@@ -48,11 +52,26 @@ def to_ycbcr(bgr):
     return y, cb, cr
 
 
-def to_bgr(y, cb, cr):
+def to_bgr_float(y, cb, cr):
     r = y + 1.402 * (cr - 128)
     g = y - 0.344136 * (cb - 128) - 0.714136 * (cr - 128)
     b = y + 1.772 * (cb - 128)
-    return np.clip(np.round(np.stack([b, g, r], -1)), 0, 255).astype(np.uint8)
+    return np.stack([b, g, r], -1)
+
+
+def to_bgr(y, cb, cr):
+    return np.clip(np.round(to_bgr_float(y, cb, cr)), 0, 255).astype(np.uint8)
+
+
+def srgb_to_linear(codes):
+    v = codes.astype(float) / 255.0
+    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4)
+
+
+def linear_to_srgb8(v):
+    v = np.clip(v, 0.0, 1.0)
+    s = np.where(v <= 0.0031308, 12.92 * v, 1.055 * v ** (1 / 2.4) - 0.055)
+    return np.clip(np.round(255.0 * s), 0, 255).astype(np.uint8)
 
 
 def quantise(channel, table):
@@ -90,7 +109,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("src")
     parser.add_argument("dst")
-    parser.add_argument("mode", choices=["subsample", "quantise"])
+    parser.add_argument("mode", choices=["subsample", "subsample_linear", "quantise"])
     parser.add_argument("--quality", type=int, default=90)
     args = parser.parse_args()
     if os.path.exists(args.dst):
@@ -104,7 +123,13 @@ def main():
         for name in sorted(os.listdir(os.path.join(args.src, camera))):
             if not name.endswith(".png"):
                 raise SystemExit(f"{args.src}/{camera}/{name}: not PNG")
-            y, cb, cr = to_ycbcr(cv2.imread(os.path.join(args.src, camera, name)))
+            image = cv2.imread(os.path.join(args.src, camera, name))
+            if args.mode == "subsample_linear":
+                y, cb, cr = to_ycbcr(255.0 * srgb_to_linear(image))
+                linear = to_bgr_float(y, subsample(cb), subsample(cr)) / 255.0
+                cv2.imwrite(os.path.join(args.dst, camera, name), linear_to_srgb8(linear))
+                continue
+            y, cb, cr = to_ycbcr(image)
             if args.mode == "subsample":
                 cb, cr = subsample(cb), subsample(cr)
             else:
