@@ -119,17 +119,25 @@ bool ReadJpeg(const std::vector<unsigned char>& bytes, JpegRead read, bool* subs
   return true;
 }
 
-}  // namespace
-
-StatusOr<ChromaSampling> ReadChromaSampling(const std::string& path) {
+// The bytes of the image file at `path`; kInvalidInput naming it when it cannot be read.
+StatusOr<std::vector<unsigned char>> ReadImageBytes(const std::string& path) {
   const StatusOr<std::string> file = ReadFileContents(path);
   if (!file.ok()) {
     return Status::InvalidInput(path + ": cannot read the image (" + file.status().message() + ")");
   }
-  const std::vector<unsigned char> bytes(file->begin(), file->end());
-  const bool is_jpeg =
-      bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
-  if (!is_jpeg) return ChromaSampling::kNotJpeg;
+  return std::vector<unsigned char>(file->begin(), file->end());
+}
+
+// Whether `bytes` start like a JPEG (SOI marker, then a marker).
+bool IsJpeg(const std::vector<unsigned char>& bytes) {
+  return bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+}
+
+}  // namespace
+
+StatusOr<ChromaSampling> ReadChromaSampling(const std::string& path) {
+  BCOT_ASSIGN_OR_RETURN(const std::vector<unsigned char> bytes, ReadImageBytes(path));
+  if (!IsJpeg(bytes)) return ChromaSampling::kNotJpeg;
   bool subsampled = false;
   if (!ReadJpeg(bytes, JpegRead::kHeader, &subsampled, nullptr)) {
     return Status::InvalidInput(path + ": corrupt JPEG header");
@@ -138,17 +146,11 @@ StatusOr<ChromaSampling> ReadChromaSampling(const std::string& path) {
 }
 
 StatusOr<cv::Mat3b> ReadColorImage(const std::string& path) {
-  const StatusOr<std::string> file = ReadFileContents(path);
-  if (!file.ok()) {
-    return Status::InvalidInput(path + ": cannot read the image (" + file.status().message() + ")");
-  }
-  const std::vector<unsigned char> bytes(file->begin(), file->end());
+  BCOT_ASSIGN_OR_RETURN(const std::vector<unsigned char> bytes, ReadImageBytes(path));
   if (bytes.empty()) return Status::InvalidInput(path + ": cannot read the image (empty file)");
   BCOT_RETURN_IF_ERROR(CheckCompleteImageFile(path, bytes));
-  const bool is_jpeg =
-      bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
   cv::Mat3b jpeg;
-  if (is_jpeg && ReadJpeg(bytes, JpegRead::kPixels, nullptr, &jpeg)) return jpeg;
+  if (IsJpeg(bytes) && ReadJpeg(bytes, JpegRead::kPixels, nullptr, &jpeg)) return jpeg;
   const cv::Mat image = cv::imdecode(bytes, cv::IMREAD_COLOR);
   if (image.empty()) return Status::InvalidInput(path + ": cannot read the image");
   return cv::Mat3b(image);

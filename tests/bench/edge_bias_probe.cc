@@ -88,15 +88,12 @@ struct Accumulator {
   }
 };
 
-// gt/mask/<camera>/NNNNNN.png (16-bit coverage c in [0, 1]) as the 8-bit grey image 50 + 150·c:
+// The coverage c in [0, 1] of gt/mask/<camera>/NNNNNN.png as the 8-bit grey image 50 + 150·c:
 // an object of linear level 0.78 on a background of 0.2, both clear of edge.clip_level.
-bcot::StatusOr<cv::Mat3b> ReadCoverageMask(const std::string& sequence_dir,
-                                           const std::string& camera, int frame) {
-  const std::string path = fmt::format("{}/gt/mask/{}/{:06d}.png", sequence_dir, camera, frame);
-  const cv::Mat mask = cv::imread(path, cv::IMREAD_UNCHANGED);
-  if (mask.empty() || mask.type() != CV_16UC1) {
-    return bcot::Status::IoError(path + ": not found or not a 16-bit one-channel coverage mask");
-  }
+bcot::StatusOr<cv::Mat3b> CoverageAsImage(const std::string& sequence_dir,
+                                          const std::string& camera, int frame) {
+  BCOT_ASSIGN_OR_RETURN(const cv::Mat mask,
+                        bcot::bench::ReadCoverageMask(sequence_dir, camera, frame));
   cv::Mat grey;
   mask.convertTo(grey, CV_8U, 150.0 / 65535.0, 50.0);
   cv::Mat3b image;
@@ -284,7 +281,7 @@ int main(int argc, char** argv) {
     int candidates = 0, measured = 0;
     for (int f = 0; f < frames; ++f) {
       const StatusOr<cv::Mat3b> image =
-          coverage_mask ? ReadCoverageMask(sequence_dir, camera.camera.name, f)
+          coverage_mask ? CoverageAsImage(sequence_dir, camera.camera.name, f)
                         : ReadCameraImage(sequence->image_paths[v][f], camera.camera);
       if (!image.ok()) return Fail(image.status().message());
       const Eigen::Isometry3d rig_from_objcentre = loaded->RigFromObjcentre(f);

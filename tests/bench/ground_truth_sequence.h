@@ -39,6 +39,18 @@ inline std::vector<cv::Mat3b> ReadFrameImages(const Sequence& sequence,
 
 inline std::string TruthPath(const std::string& dir) { return dir + "/gt/rig_from_object.txt"; }
 
+// gt/mask/<camera>/NNNNNN.png of a scripts/pbr_synth.sh sequence: the renderer's anti-aliased
+// coverage of the object (CV_16UC1, 65535 = covered). kIoError naming the file otherwise.
+inline StatusOr<cv::Mat> ReadCoverageMask(const std::string& dir, const std::string& camera,
+                                          int frame) {
+  const std::string path = dir + "/gt/mask/" + camera + "/" + cv::format("%06d.png", frame);
+  cv::Mat mask = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (mask.empty() || mask.type() != CV_16UC1) {
+    return Status::IoError(path + ": missing or not 16-bit grey");
+  }
+  return mask;
+}
+
 // Loads the sequence in `dir` (init_pose.txt not required), its ground truth and its mesh.
 inline StatusOr<GroundTruthSequence> LoadGroundTruthSequence(const std::string& dir) {
   StatusOr<Sequence> sequence = LoadSequence(dir, /*require_init_pose=*/false);

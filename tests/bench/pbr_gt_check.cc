@@ -23,21 +23,23 @@
 //   build/tests/bench/pbr_gt_check SEQ [--max-mean-px 0.05] [--frames N] [--contrast-only]
 // Prints one line per camera and a total; exit 1 when --max-mean-px is given and the mean
 // |distance| of any camera exceeds it (or no contour point was compared), 2 on bad input.
-#include <cmath>
-#include <cstdio>
-#include <string>
-#include <vector>
+#include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <Eigen/Geometry>
-#include <fmt/format.h>
+#include <cmath>
+#include <cstdio>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "bcot/core/pose_io.h"
 #include "bcot/core/sequence.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
+#include "ground_truth_sequence.h"
 
 namespace {
 
@@ -157,12 +159,12 @@ int main(int argc, char** argv) {
       }
       cv::Mat mask;
       if (!contrast_only) {
-        const std::string path = fmt::format("{}/gt/mask/{}/{:06d}.png", dir, camera.name, frame);
-        mask = cv::imread(path, cv::IMREAD_UNCHANGED);
-        if (mask.empty() || mask.type() != CV_16UC1) {
-          std::fprintf(stderr, "%s: missing or not 16-bit grey\n", path.c_str());
+        bcot::StatusOr<cv::Mat> read = bcot::bench::ReadCoverageMask(dir, camera.name, frame);
+        if (!read.ok()) {
+          std::fprintf(stderr, "%s\n", read.status().message().c_str());
           return 2;
         }
+        mask = *std::move(read);
       }
       // bcot's coverage of the same pose: 16×16 rays per pixel, averaged over the pixel.
       cv::Mat1f coverage(camera.height, camera.width, 0.0f);
@@ -198,11 +200,12 @@ int main(int argc, char** argv) {
           }
         }
         if (ok) {
-          stats.contrast_num += std::sqrt(std::pow(in[0] - out1[0], 2) + std::pow(in[1] - out1[1], 2) +
-                                          std::pow(in[2] - out1[2], 2));
-          stats.contrast_den += std::sqrt(std::pow(out2[0] - out1[0], 2) +
-                                          std::pow(out2[1] - out1[1], 2) +
-                                          std::pow(out2[2] - out1[2], 2));
+          stats.contrast_num +=
+              std::sqrt(std::pow(in[0] - out1[0], 2) + std::pow(in[1] - out1[1], 2) +
+                        std::pow(in[2] - out1[2], 2));
+          stats.contrast_den +=
+              std::sqrt(std::pow(out2[0] - out1[0], 2) + std::pow(out2[1] - out1[1], 2) +
+                        std::pow(out2[2] - out1[2], 2));
           ++stats.contrast_points;
         }
         if (contrast_only) continue;
