@@ -241,6 +241,36 @@ def srgb_to_linear(c):
     return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
 
 
+def srgb_encode(v):
+    """Linear light (clipped to [0, 1]) to sRGB-encoded values in [0, 1]."""
+    v = np.clip(v, 0.0, 1.0)
+    return np.where(v <= 0.0031308, 12.92 * v, 1.055 * np.power(v, 1 / 2.4) - 0.055)
+
+
+def apply_sensor(lin, sensor, rng):
+    """The sensor model on scene-linear BGR: Gaussian lens blur (sensor["lens_blur_px"]), then
+    Gaussian read noise plus shot noise, variance noise_sigma² + shot_noise_gain·value."""
+    import cv2  # the Blender-side scripts import this module without OpenCV
+    if sensor["lens_blur_px"] > 0:
+        lin = cv2.GaussianBlur(lin, (0, 0), float(sensor["lens_blur_px"]),
+                               borderType=cv2.BORDER_REFLECT)
+    sigma = np.sqrt(sensor["noise_sigma"] ** 2 + sensor["shot_noise_gain"] * np.maximum(lin, 0))
+    return lin + sigma * rng.standard_normal(lin.shape)
+
+
+def copy_sequence_without_frames(src, dst):
+    """Copies a pbr_synth.sh sequence's contract and gt/ from `src` to a new `dst`, without the
+    camera folders of frames (and raw/); returns the camera names (those of gt/mask/)."""
+    if os.path.exists(dst):
+        raise SystemExit(f"{dst}: exists; remove it first")
+    cameras = sorted(os.listdir(os.path.join(src, "gt", "mask")))
+    shutil.copytree(src, dst, ignore=shutil.ignore_patterns(*cameras, "raw"))
+    shutil.copytree(os.path.join(src, "gt"), os.path.join(dst, "gt"), dirs_exist_ok=True)
+    for camera in cameras:
+        os.makedirs(os.path.join(dst, camera))
+    return cameras
+
+
 def make_plan(spec):
     rng = np.random.default_rng(int(spec["seed"]))
     cam, obj, mot = spec["camera"], spec["object"], spec["motion"]

@@ -35,11 +35,6 @@ def read_linear(path):
     return image.astype(np.float64)
 
 
-def srgb_encode(v):
-    v = np.clip(v, 0.0, 1.0)
-    return np.where(v <= 0.0031308, 12.92 * v, 1.055 * np.power(v, 1 / 2.4) - 0.055)
-
-
 # Blender's OCIO configuration (Debian package `blender`).
 FILMIC_DIR = "/usr/share/blender/datafiles/colormanagement/filmic"
 # Filmic Log's log2 allocation: scene-linear 2^-12.47... .. 2^12.52... onto [0, 1].
@@ -155,16 +150,11 @@ def main():
                 bg = cv2.resize(bg, (lin.shape[1], lin.shape[0]), interpolation=cv2.INTER_LINEAR)
                 inside = lin[:, :, 3:4] > 0.5
                 lin = np.where(inside, lin[:, :, :3], bg[:, :, :3])
-            if se["lens_blur_px"] > 0:
-                lin = cv2.GaussianBlur(lin, (0, 0), float(se["lens_blur_px"]),
-                                       borderType=cv2.BORDER_REFLECT)
-            rng = np.random.default_rng([int(spec["seed"]), 7001, ci, k])
-            sigma = np.sqrt(se["noise_sigma"] ** 2 + se["shot_noise_gain"] * np.maximum(lin, 0))
-            lin = lin + sigma * rng.standard_normal(lin.shape)
+            lin = pc.apply_sensor(lin, se, np.random.default_rng([int(spec["seed"]), 7001, ci, k]))
             if se["view_transform"] == "linear":
                 img8 = np.round(np.clip(lin, 0.0, 1.0) * 255.0).astype(np.uint8)
             elif filmic is None:
-                img8 = np.round(srgb_encode(lin) * 255.0).astype(np.uint8)
+                img8 = np.round(pc.srgb_encode(lin) * 255.0).astype(np.uint8)
             else:  # BGR -> RGB for the LUT and back
                 img8 = np.round(filmic(lin[:, :, ::-1])[:, :, ::-1] * 255.0).astype(np.uint8)
             encode_image(os.path.join(args.out, c["name"], f"{k:06d}{ext}"), img8,

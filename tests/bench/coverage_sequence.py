@@ -19,26 +19,19 @@ lens blur σ 0.6 px and Gaussian + shot noise (σ² = 0.004² + 0.002·v), seede
 """
 import argparse
 import os
-import shutil
+import sys
 
 import cv2
 import numpy as np
 
-
-def srgb_to_linear(v):
-    v = v / 255.0
-    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4)
-
-
-def linear_to_srgb8(v):
-    v = np.clip(v, 0.0, 1.0)
-    s = np.where(v <= 0.0031308, 12.92 * v, 1.055 * v ** (1 / 2.4) - 0.055)
-    return np.round(s * 255.0).astype(np.uint8)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "scripts", "pbr"))
+import pbr_common as pc  # noqa: E402
 
 
 def mean_colours(image_bgr8, coverage):
     """Mean linear BGR of the fully covered pixels and of a ring 3-10 px outside them."""
-    linear = srgb_to_linear(image_bgr8.astype(np.float64))
+    linear = pc.srgb_to_linear(image_bgr8)
     inside = coverage >= 1.0
     outside = coverage <= 0.0
     if not inside.any():
@@ -57,14 +50,9 @@ def main():
     parser.add_argument("--sensor", action="store_true")
     parser.add_argument("--jpeg", type=int, default=0)
     args = parser.parse_args()
-    if os.path.exists(args.dst):
-        raise SystemExit(f"{args.dst}: exists; remove it first")
-    cameras = sorted(d for d in os.listdir(os.path.join(args.src, "gt", "mask")))
-    shutil.copytree(args.src, args.dst, ignore=shutil.ignore_patterns(*cameras, "raw"))
-    shutil.copytree(os.path.join(args.src, "gt"), os.path.join(args.dst, "gt"),
-                    dirs_exist_ok=True)
+    cameras = pc.copy_sequence_without_frames(args.src, args.dst)
+    sensor = pc.DEFAULTS["sensor"]
     for ci, camera in enumerate(cameras):
-        os.makedirs(os.path.join(args.dst, camera))
         images = sorted(os.listdir(os.path.join(args.src, camera)))
         colours = None
         for frame, name in enumerate(images):
@@ -80,12 +68,9 @@ def main():
             fg, bg = colours
             linear = coverage[..., None] * fg + (1.0 - coverage[..., None]) * bg
             if args.sensor:
-                linear = cv2.GaussianBlur(linear, (0, 0), 0.6, borderType=cv2.BORDER_REFLECT)
-                rng = np.random.default_rng(1000 * ci + frame)
-                sigma = np.sqrt(0.004 ** 2 + 0.002 * np.maximum(linear, 0.0))
-                linear = linear + sigma * rng.standard_normal(linear.shape)
+                linear = pc.apply_sensor(linear, sensor, np.random.default_rng(1000 * ci + frame))
             stem = os.path.splitext(name)[0]
-            out = linear_to_srgb8(linear)
+            out = np.round(pc.srgb_encode(linear) * 255.0).astype(np.uint8)
             if args.jpeg > 0:
                 cv2.imwrite(os.path.join(args.dst, camera, stem + ".jpg"), out,
                             [cv2.IMWRITE_JPEG_QUALITY, args.jpeg])

@@ -21,10 +21,14 @@ annotate DST ...` + `pbr_errors DST ANN`), they show which of the two costs the 
 """
 import argparse
 import os
-import shutil
+import sys
 
 import cv2
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "scripts", "pbr"))
+import pbr_common as pc  # noqa: E402
 
 LUMINANCE_TABLE = np.array([
     16, 11, 10, 16, 24, 40, 51, 61, 12, 12, 14, 19, 26, 58, 60, 55,
@@ -61,17 +65,6 @@ def to_bgr_float(y, cb, cr):
 
 def to_bgr(y, cb, cr):
     return np.clip(np.round(to_bgr_float(y, cb, cr)), 0, 255).astype(np.uint8)
-
-
-def srgb_to_linear(codes):
-    v = codes.astype(float) / 255.0
-    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4)
-
-
-def linear_to_srgb8(v):
-    v = np.clip(v, 0.0, 1.0)
-    s = np.where(v <= 0.0031308, 12.92 * v, 1.055 * v ** (1 / 2.4) - 0.055)
-    return np.clip(np.round(255.0 * s), 0, 255).astype(np.uint8)
 
 
 def quantise(channel, table):
@@ -112,22 +105,17 @@ def main():
     parser.add_argument("mode", choices=["subsample", "subsample_linear", "quantise"])
     parser.add_argument("--quality", type=int, default=90)
     args = parser.parse_args()
-    if os.path.exists(args.dst):
-        raise SystemExit(f"{args.dst}: exists; remove it first")
-    cameras = sorted(os.listdir(os.path.join(args.src, "gt", "mask")))
-    shutil.copytree(args.src, args.dst, ignore=shutil.ignore_patterns(*cameras, "raw"))
-    shutil.copytree(os.path.join(args.src, "gt"), os.path.join(args.dst, "gt"),
-                    dirs_exist_ok=True)
+    cameras = pc.copy_sequence_without_frames(args.src, args.dst)
     for camera in cameras:
-        os.makedirs(os.path.join(args.dst, camera))
         for name in sorted(os.listdir(os.path.join(args.src, camera))):
             if not name.endswith(".png"):
                 raise SystemExit(f"{args.src}/{camera}/{name}: not PNG")
             image = cv2.imread(os.path.join(args.src, camera, name))
             if args.mode == "subsample_linear":
-                y, cb, cr = to_ycbcr(255.0 * srgb_to_linear(image))
+                y, cb, cr = to_ycbcr(255.0 * pc.srgb_to_linear(image))
                 linear = to_bgr_float(y, subsample(cb), subsample(cr)) / 255.0
-                cv2.imwrite(os.path.join(args.dst, camera, name), linear_to_srgb8(linear))
+                encoded = np.round(255.0 * pc.srgb_encode(linear)).astype(np.uint8)
+                cv2.imwrite(os.path.join(args.dst, camera, name), encoded)
                 continue
             y, cb, cr = to_ycbcr(image)
             if args.mode == "subsample":
