@@ -264,6 +264,15 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
                    ? "table needs edge.response_file"
                    : "";
       });
+  s->AddChoice(
+      "edge.chroma_sampling", [](auto& o) -> auto& { return o.chroma_sampling; },
+      Choices<ChromaSamplingSetting>{{"auto", ChromaSamplingSetting::kAuto},
+                                     {"4:4:4", ChromaSamplingSetting::kFull},
+                                     {"4:2:0", ChromaSamplingSetting::kJpeg420},
+                                     {"4:2:2", ChromaSamplingSetting::kJpeg422}},
+      "how the frames store colour; JPEG's subsampled chroma (4:2:0, 4:2:2) moves edges and the "
+      "edge stage takes the move off: auto (each camera's first frame: a JPEG's header, else "
+      "4:4:4), or set (frames converted from 4:2:0 JPEG to PNG keep its damage)");
   s->Add(
        "edge.gamma", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.response.gamma; }, "",
        "exponent of edge.response: gamma, linear = (code / 255)^gamma")

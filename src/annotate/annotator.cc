@@ -118,9 +118,13 @@ class Fnv1a {
   uint64_t hash_ = 14695981039346656037ULL;
 };
 
-// Indices into the rig of the cameras `selection` asks for, with their weights.
-StatusOr<std::vector<TrackedView>> SelectViews(const Rig& rig, const ViewSelection& selection,
+// Indices into the rig of the cameras the options' `views` ask for, with their weights and
+// chroma sampling.
+StatusOr<std::vector<TrackedView>> SelectViews(const Sequence& sequence,
+                                               const AnnotateOptions& options,
                                                std::vector<int>* rig_indices) {
+  const Rig& rig = sequence.rig;
+  const ViewSelection& selection = options.views;
   std::vector<int> indices;
   if (selection.cameras.empty()) {
     for (int i = 0; i < rig.size(); ++i) indices.push_back(i);
@@ -145,8 +149,10 @@ StatusOr<std::vector<TrackedView>> SelectViews(const Rig& rig, const ViewSelecti
   std::vector<TrackedView> views;
   for (size_t i = 0; i < indices.size(); ++i) {
     const RigCamera& camera = rig[indices[i]];
+    BCOT_ASSIGN_OR_RETURN(const ChromaSampling chroma,
+                          ResolveChromaSampling(sequence, indices[i], options.chroma_sampling));
     views.push_back({camera.camera, camera.cam_from_rig,
-                     selection.weights.empty() ? 1.0 : selection.weights[i]});
+                     selection.weights.empty() ? 1.0 : selection.weights[i], chroma});
   }
   *rig_indices = indices;
   return views;
@@ -187,6 +193,22 @@ ImageResponseRecord ImageResponseRecordOf(const MultiViewTracker& tracker) {
 }
 
 }  // namespace
+
+StatusOr<ChromaSampling> ResolveChromaSampling(const Sequence& sequence, int index,
+                                               ChromaSamplingSetting setting) {
+  switch (setting) {
+    case ChromaSamplingSetting::kFull:
+      return ChromaSampling::Full();
+    case ChromaSamplingSetting::kJpeg420:
+      return ChromaSampling::Jpeg420();
+    case ChromaSamplingSetting::kJpeg422:
+      return ChromaSampling::Jpeg422();
+    case ChromaSamplingSetting::kAuto:
+      break;
+  }
+  if (sequence.image_paths[index].empty()) return ChromaSampling::Full();
+  return ReadChromaSampling(sequence.image_paths[index].front());
+}
 
 std::string FormatFramesCsv(const SequenceAnnotation& annotation) {
   std::string csv = "frame,termination,rounds,iterations,initial_energy,final_energy";
@@ -272,7 +294,7 @@ StatusOr<RefinedFrame> RefineFrame(const Sequence& sequence, const RayCaster& ca
   }
   std::vector<int> rig_indices;
   BCOT_ASSIGN_OR_RETURN(std::vector<TrackedView> views,
-                        SelectViews(sequence.rig, options.views, &rig_indices));
+                        SelectViews(sequence, options, &rig_indices));
   BCOT_ASSIGN_OR_RETURN(std::vector<cv::Mat3b> images,
                         ReadFrameImages(sequence, rig_indices, views, frame, nullptr));
   BCOT_ASSIGN_OR_RETURN(std::unique_ptr<MultiViewTracker> tracker,
@@ -301,7 +323,7 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
                                             existing.size(), sequence.num_frames));
   }
   std::vector<int> rig_indices;
-  StatusOr<std::vector<TrackedView>> views = SelectViews(sequence.rig, options.views, &rig_indices);
+  StatusOr<std::vector<TrackedView>> views = SelectViews(sequence, options, &rig_indices);
   if (!views.ok()) return views.status();
   const Mesh& mesh = caster.mesh();
   using AnchorMap = std::map<int, Eigen::Isometry3d>;
@@ -596,16 +618,16 @@ std::vector<std::string> CaptureNotes(const Sequence& sequence) {
   for (int v = 0; v < sequence.rig.size(); ++v) {
     if (sequence.image_paths[v].empty()) continue;
     const StatusOr<ChromaSampling> sampling = ReadChromaSampling(sequence.image_paths[v].front());
-    if (sampling.ok() && *sampling == ChromaSampling::kSubsampled) {
-      subsampled.push_back(sequence.rig[v].camera.name);
+    if (sampling.ok() && sampling->subsampled()) {
+      subsampled.push_back(sequence.rig[v].camera.name + " (" + sampling->Name() + ")");
     }
   }
   if (subsampled.empty()) return {};
   return {fmt::format(
-      "{}: JPEG frames with subsampled chroma (4:2:0 or 4:2:2): colour is kept at half "
-      "resolution, which blurs and shifts the edges the annotation is measured on (on our renders "
-      "it cost a third of the precision); record PNG or 4:4:4 JPEG if you can "
-      "(docs/notes/issue12_coverage_floor.md)",
+      "{}: JPEG frames with subsampled chroma: colour is kept at half resolution, which blurs "
+      "and shifts the edges the annotation is measured on; the edge stage takes the shift off "
+      "(edge.chroma_sampling), but on our renders such frames still cost a quarter of the "
+      "precision; record PNG or 4:4:4 JPEG if you can (docs/notes/issue12_jpeg_chroma.md)",
       fmt::join(subsampled, ", "))};
 }
 

@@ -72,16 +72,16 @@ bool HasExif(const jpeg_decompress_struct& info) {
 // What ReadJpeg reads of a JPEG: the frame header only, or the pixels too.
 enum class JpegRead { kHeader, kPixels };
 
-// Reads the JPEG in `bytes` with libjpeg. Always its header: `*subsampled` (when not null) says
-// whether its chroma is stored below luma's resolution. With kPixels also its pixels, straight
-// into BGR rows (libjpeg-turbo's JCS_EXT_BGR output): the pixels of cv::imdecode(IMREAD_COLOR) —
-// the same library, the same default IDCT and upsampling — without OpenCV's RGB-to-BGR pass,
-// which costs as much again as the decode (scripts/bench_image_read.sh, 960×768: 2.1 against
-// 4.7 ms). False on a libjpeg error (a CMYK file, corrupt headers) and, with kPixels, on an Exif
-// block: the decode is then left to cv::imdecode, which reports or handles the first and turns
-// the image by the second's orientation tag. Warnings about corrupt data go to stderr as under
-// imdecode. Only trivially destructible locals live across setjmp.
-bool ReadJpeg(const std::vector<unsigned char>& bytes, JpegRead read, bool* subsampled,
+// Reads the JPEG in `bytes` with libjpeg. Always its header: `*sampling` (when not null) is its
+// chroma's sampling relative to luma (the coarsest of its chroma components). With kPixels also its
+// pixels, straight into BGR rows (libjpeg-turbo's JCS_EXT_BGR output): the pixels of
+// cv::imdecode(IMREAD_COLOR) — the same library, the same default IDCT and upsampling — without
+// OpenCV's RGB-to-BGR pass, which costs as much again as the decode (scripts/bench_image_read.sh,
+// 960×768: 2.1 against 4.7 ms). False on a libjpeg error (a CMYK file, corrupt headers) and, with
+// kPixels, on an Exif block: the decode is then left to cv::imdecode, which reports or handles the
+// first and turns the image by the second's orientation tag. Warnings about corrupt data go to
+// stderr as under imdecode. Only trivially destructible locals live across setjmp.
+bool ReadJpeg(const std::vector<unsigned char>& bytes, JpegRead read, ChromaSampling* sampling,
               cv::Mat3b* image) {
   jpeg_decompress_struct info;
   JpegErrorManager errors;
@@ -95,12 +95,14 @@ bool ReadJpeg(const std::vector<unsigned char>& bytes, JpegRead read, bool* subs
   jpeg_mem_src(&info, bytes.data(), static_cast<unsigned long>(bytes.size()));
   jpeg_save_markers(&info, JPEG_APP0 + 1, 0xFFFF);
   jpeg_read_header(&info, TRUE);
-  if (subsampled != nullptr) {
-    *subsampled = false;
+  if (sampling != nullptr) {
+    *sampling = ChromaSampling::Full();
+    // Sampling factors are 1..4 (libjpeg rejects others); luma has the largest.
     for (int c = 1; c < info.num_components; ++c) {
-      *subsampled = *subsampled ||
-                    info.comp_info[c].h_samp_factor < info.comp_info[0].h_samp_factor ||
-                    info.comp_info[c].v_samp_factor < info.comp_info[0].v_samp_factor;
+      sampling->horizontal =
+          std::max(sampling->horizontal, info.max_h_samp_factor / info.comp_info[c].h_samp_factor);
+      sampling->vertical =
+          std::max(sampling->vertical, info.max_v_samp_factor / info.comp_info[c].v_samp_factor);
     }
   }
   if (read == JpegRead::kHeader || HasExif(info)) {
@@ -137,12 +139,12 @@ bool IsJpeg(const std::vector<unsigned char>& bytes) {
 
 StatusOr<ChromaSampling> ReadChromaSampling(const std::string& path) {
   BCOT_ASSIGN_OR_RETURN(const std::vector<unsigned char> bytes, ReadImageBytes(path));
-  if (!IsJpeg(bytes)) return ChromaSampling::kNotJpeg;
-  bool subsampled = false;
-  if (!ReadJpeg(bytes, JpegRead::kHeader, &subsampled, nullptr)) {
+  if (!IsJpeg(bytes)) return ChromaSampling::Full();
+  ChromaSampling sampling;
+  if (!ReadJpeg(bytes, JpegRead::kHeader, &sampling, nullptr)) {
     return Status::InvalidInput(path + ": corrupt JPEG header");
   }
-  return subsampled ? ChromaSampling::kSubsampled : ChromaSampling::kFull;
+  return sampling;
 }
 
 StatusOr<cv::Mat3b> ReadColorImage(const std::string& path) {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -92,6 +93,27 @@ LinearTable::LinearTable(const ImageResponse& response) {
     }
     table_[i] = static_cast<float>(linear);
   }
+  int code = 0;
+  for (int b = 0; b < kBuckets; ++b) {
+    const double lower = static_cast<double>(b) / kBuckets;
+    while (code < 255 && table_[code + 1] <= lower) ++code;
+    bucket_code_[b] = static_cast<unsigned char>(code);
+  }
+}
+
+double LinearTable::Decode(double code) const {
+  const double c = std::clamp(code, 0.0, 255.0);
+  const int k = std::min(static_cast<int>(c), 254);
+  return table_[k] + (c - k) * (table_[k + 1] - table_[k]);
+}
+
+double LinearTable::Encode(double linear) const {
+  if (!(linear > table_[0])) return 0.0;
+  if (linear >= table_[255]) return 255.0;
+  // table_[k] <= linear < table_[k + 1] (table_[255] = 1, so the bucket exists).
+  int k = bucket_code_[std::min(static_cast<int>(linear * kBuckets), kBuckets - 1)];
+  while (table_[k + 1] <= linear) ++k;
+  return k + (linear - table_[k]) / (table_[k + 1] - table_[k]);
 }
 
 Eigen::Vector3d SampleLinearRgb(const cv::Mat3b& image, const LinearTable& lut,

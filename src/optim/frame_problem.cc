@@ -618,9 +618,14 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
       const Silhouette silhouette = RenderSilhouette(
           caster_, *view.camera, view.cam_from_rig * linearisation_pose * objcentre_from_template,
           options_.region.contour, kPointStridePx);
+      // The correction for subsampled chroma costs about nine times a line's own fit
+      // (scripts/bench_edge_fit.sh); the earlier rounds only bring the contour within a fraction
+      // of a pixel, the last one's lines place the pose, so only they are corrected
+      // (docs/notes/issue12_jpeg_chroma.md).
+      const ChromaSampling chroma = round + 1 == edge.rounds ? view.chroma : ChromaSampling::Full();
       StatusOr<CorrespondenceLines> lines =
           BuildEdgeLines(caster_, *view.camera, view.cam_from_rig, linearisation_pose, *view.image,
-                         silhouette, edge.lines);
+                         silhouette, edge.lines, chroma);
       BCOT_CHECK(lines.ok());
       view_lines[v] = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
     });

@@ -8,8 +8,8 @@
 #include <utility>
 
 #include "bcot/core/se3.h"
-#include "bcot/optim/silhouette.h"
 #include "bcot/core/violations.h"
+#include "bcot/optim/silhouette.h"
 
 namespace bcot {
 
@@ -139,7 +139,7 @@ std::vector<FrameView> MultiViewTracker::FrameViews(const std::vector<cv::Mat3b>
   for (size_t v = 0; v < views_.size(); ++v) {
     frame_views.push_back({&views_[v].camera, views_[v].cam_from_rig, &images[v],
                            color_models_[v].get(), views_[v].weight,
-                           refine ? refine_color_models_[v].get() : nullptr});
+                           refine ? refine_color_models_[v].get() : nullptr, views_[v].chroma});
   }
   return frame_views;
 }

@@ -180,6 +180,16 @@ TEST(AnnotateOptionsTest, ImageResponseParsesAndNamesBadValues) {
               AllOf(HasSubstr("--set edge.response_file"), HasSubstr("short.txt:2: 'x'")));
 }
 
+// How the frames store chroma: read from their headers unless set.
+TEST(AnnotateOptionsTest, ChromaSamplingParsesAndNamesBadValues) {
+  EXPECT_EQ(AnnotateOptions().chroma_sampling, ChromaSamplingSetting::kAuto);
+  const StatusOr<AnnotateOptions> set = ReadAnnotateOptions("", {"edge.chroma_sampling=4:2:0"});
+  ASSERT_TRUE(set.ok()) << set.status().message();
+  EXPECT_EQ(set->chroma_sampling, ChromaSamplingSetting::kJpeg420);
+  EXPECT_THAT(ParseText("edge:\n  chroma_sampling: 4:1:1\n").status().message(),
+              HasSubstr("'4:1:1' is not one of auto | 4:4:4 | 4:2:0 | 4:2:2"));
+}
+
 TEST(AnnotateOptionsTest, WrongTypesAndEnumsAreErrors) {
   EXPECT_THAT(ParseText("frame:\n  rounds: many\n").status().message(), HasSubstr("rounds"));
   const StatusOr<AnnotateOptions> form = ParseText("cost:\n  form: squared\n");

@@ -110,11 +110,16 @@ TEST_F(AnnotatorTest, MonocularSelectionUsesOneCamera) {
 
 // One note names every camera whose frames are JPEG with subsampled chroma; PNG frames and
 // unreadable files give none (the solve reports those).
+// One colour image as `dir`/a.jpg (OpenCV writes 4:2:0) and a.png.
+void WriteJpegAndPng(const test::TempDir& dir) {
+  const cv::Mat3b image(32, 48, cv::Vec3b(40, 120, 200));
+  ASSERT_TRUE(cv::imwrite(dir.File("a.jpg"), image));
+  ASSERT_TRUE(cv::imwrite(dir.File("a.png"), image));
+}
+
 TEST(CaptureNotesTest, NamesTheCamerasWithSubsampledChroma) {
   test::TempDir dir;
-  cv::Mat3b image(32, 48, cv::Vec3b(40, 120, 200));
-  ASSERT_TRUE(cv::imwrite(dir.File("a.jpg"), image));  // OpenCV writes 4:2:0
-  ASSERT_TRUE(cv::imwrite(dir.File("a.png"), image));
+  WriteJpegAndPng(dir);
   Sequence sequence;
   for (const char* name : {"cam0", "cam1", "cam2"}) {
     sequence.rig.Add({Camera(name, 48, 32, 40.0, 40.0, 23.5, 15.5), Eigen::Isometry3d::Identity()});
@@ -122,10 +127,29 @@ TEST(CaptureNotesTest, NamesTheCamerasWithSubsampledChroma) {
   sequence.image_paths = {{dir.File("a.jpg")}, {dir.File("a.png")}, {dir.File("a.jpg")}};
   const std::vector<std::string> notes = CaptureNotes(sequence);
   ASSERT_EQ(notes.size(), 1u);
-  EXPECT_THAT(notes[0], ::testing::StartsWith("cam0, cam2: JPEG frames with subsampled chroma"));
+  EXPECT_THAT(notes[0], ::testing::StartsWith(
+                            "cam0 (4:2:0), cam2 (4:2:0): JPEG frames with subsampled chroma"));
 
   sequence.image_paths = {{dir.File("a.png")}, {dir.File("a.png")}, {dir.File("missing.jpg")}};
   EXPECT_TRUE(CaptureNotes(sequence).empty());
+}
+
+// The edge stage's chroma sampling per camera: from its first frame's header (auto), or as set.
+TEST(ResolveChromaSamplingTest, ReadsTheFirstFrameUnlessSet) {
+  test::TempDir dir;
+  WriteJpegAndPng(dir);
+  Sequence sequence;
+  sequence.image_paths = {{dir.File("a.jpg")}, {dir.File("a.png")}, {dir.File("missing.jpg")}};
+  EXPECT_EQ(ResolveChromaSampling(sequence, 0, ChromaSamplingSetting::kAuto).value(),
+            ChromaSampling::Jpeg420());
+  EXPECT_EQ(ResolveChromaSampling(sequence, 1, ChromaSamplingSetting::kAuto).value(),
+            ChromaSampling::Full());
+  EXPECT_EQ(ResolveChromaSampling(sequence, 1, ChromaSamplingSetting::kJpeg420).value(),
+            ChromaSampling::Jpeg420());
+  EXPECT_EQ(ResolveChromaSampling(sequence, 0, ChromaSamplingSetting::kFull).value(),
+            ChromaSampling::Full());
+  EXPECT_THAT(ResolveChromaSampling(sequence, 2, ChromaSamplingSetting::kAuto).status().message(),
+              HasSubstr("missing.jpg: cannot read"));
 }
 
 TEST_F(AnnotatorTest, InputHashChangesWithTheInputs) {

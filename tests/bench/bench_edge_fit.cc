@@ -1,16 +1,24 @@
-// Cost of the edge stage's blurred-step fit, FitEdgeProfile (scripts/bench_edge_fit.sh runs this
-// and tabulates it). The edge stage and the quality check fit one profile per contour line, some
-// 4,000 per binocular frame, so this fit is a large share of `bcot annotate`'s time
-// (docs/notes/issue19_speed.md).
+// Cost of the edge stage's blurred-step fit, FitEdgeProfile, and of a whole line across an edge
+// in an image, FitEdgeAcross, with and without the correction for JPEG's subsampled chroma
+// (scripts/bench_edge_fit.sh runs this and tabulates it). The edge stage and the quality check fit
+// one profile per contour line, some 4,000 per binocular frame, so this fit is a large share of
+// `bcot annotate`'s time (docs/notes/issue19_speed.md).
 //
 // Profiles: 2,000 seeded draws of the edge stage's window (33 samples, 0.25 px apart, ±4 px) in
 // three kinds, a third each: a clean blurred step (contrast 0.1–0.6, blur 0.4–1.2 px, noise
 // σ 0.005), the same with a shading ramp inside and a different slope outside (the shaded rims
 // of issue 12), and noise without a step (no contrast: most fits fail, as on clutter). Reported:
 // µs per fit, the fraction of fits found, and the mean |μ − truth| of the found step fits.
+//
+// Lines: 1,000 lines across straight edges between two colours that differ mostly in hue (blue
+// and orange, blur σ 0.7 px, sRGB), at 8 angles (5°…85°) and sub-pixel positions, encoded as
+// JPEG 4:2:0 (quality 95) and decoded by libjpeg; each line fitted as full-resolution colour
+// (FitEdgeAcross_Uncorrected) and with the codec's shift taken off (FitEdgeAcross_Jpeg420).
+// Reported: µs per line, the fraction found, and the mean signed and mean |μ − truth|.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <opencv2/imgcodecs.hpp>
 #include <random>
 #include <vector>
 
@@ -82,6 +90,84 @@ void BM_FitEdgeProfile(benchmark::State& state) {
   state.counters["mean_abs_error_px"] = measured > 0 ? abs_error / measured : std::nan("");
 }
 BENCHMARK(BM_FitEdgeProfile)->Unit(benchmark::kMillisecond);
+
+// One JPEG-decoded image of a straight edge and the lines across it (their centres on the true
+// edge, so μ's truth is 0).
+struct EdgeLineCase {
+  cv::Mat3b image;
+  std::vector<Eigen::Vector2d> centres;
+  Eigen::Vector2d normal;
+};
+
+std::vector<EdgeLineCase> MakeEdgeLineCases() {
+  const Eigen::Vector3d inside(0.55, 0.12, 0.03), outside(0.03, 0.18, 0.6);  // BGR, linear
+  std::vector<EdgeLineCase> cases;
+  for (int a = 0; a < 8; ++a) {
+    const double angle = (5.0 + a * 80.0 / 7.0) * M_PI / 180.0;
+    EdgeLineCase c;
+    c.normal = Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    const Eigen::Vector2d point(60.0 + 0.37 * a, 60.0 + 0.21 * a);
+    cv::Mat3b image(120, 120);
+    for (int y = 0; y < image.rows; ++y) {
+      for (int x = 0; x < image.cols; ++x) {
+        const double distance = c.normal.dot(Eigen::Vector2d(x, y) - point);
+        const double f = 0.5 * std::erfc(-distance / (0.7 * std::sqrt(2.0)));
+        for (int ch = 0; ch < 3; ++ch) {
+          const double linear = inside[ch] + (outside[ch] - inside[ch]) * f;
+          const double code =
+              linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+          image(y, x)[ch] = static_cast<unsigned char>(std::lround(255.0 * code));
+        }
+      }
+    }
+    std::vector<unsigned char> bytes;
+    cv::imencode(".jpg", image, bytes, {cv::IMWRITE_JPEG_QUALITY, 95});  // 4:2:0
+    c.image = cv::imdecode(bytes, cv::IMREAD_COLOR);
+    const Eigen::Vector2d tangent(-c.normal.y(), c.normal.x());
+    for (int i = 0; i < 125; ++i) c.centres.push_back(point + (i - 62) * 0.4 * tangent);
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+void FitEdgeLines(benchmark::State& state, const ChromaSampling& sampling) {
+  const EdgeLineOptions options;
+  const LinearTable table(options.response);
+  const std::vector<EdgeLineCase> cases = MakeEdgeLineCases();
+  int lines = 0, found = 0;
+  double signed_error = 0.0, abs_error = 0.0;
+  for (auto _ : state) {
+    lines = found = 0;
+    signed_error = abs_error = 0.0;
+    for (const EdgeLineCase& c : cases) {
+      for (const Eigen::Vector2d& centre : c.centres) {
+        EdgeFit fit;
+        ++lines;
+        if (FitEdgeAcross(c.image, table, centre, c.normal, options, &fit, sampling) !=
+            EdgeAcross::kFound) {
+          continue;
+        }
+        ++found;
+        signed_error += fit.mean_px;
+        abs_error += std::abs(fit.mean_px);
+      }
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * lines);
+  state.counters["found_fraction"] = static_cast<double>(found) / lines;
+  state.counters["mean_error_px"] = found > 0 ? signed_error / found : std::nan("");
+  state.counters["mean_abs_error_px"] = found > 0 ? abs_error / found : std::nan("");
+}
+
+void BM_FitEdgeAcross_Uncorrected(benchmark::State& state) {
+  FitEdgeLines(state, ChromaSampling::Full());
+}
+BENCHMARK(BM_FitEdgeAcross_Uncorrected)->Unit(benchmark::kMillisecond);
+
+void BM_FitEdgeAcross_Jpeg420(benchmark::State& state) {
+  FitEdgeLines(state, ChromaSampling::Jpeg420());
+}
+BENCHMARK(BM_FitEdgeAcross_Jpeg420)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace bcot

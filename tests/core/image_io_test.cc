@@ -132,9 +132,10 @@ TEST(ReadChromaSamplingTest, ReadsTheJpegFrameHeader) {
   cv::Mat1b grey;
   cv::cvtColor(Gradient(64, 48), grey, cv::COLOR_BGR2GRAY);
   ASSERT_TRUE(cv::imwrite(dir.File("grey.jpg"), grey));
-  EXPECT_EQ(ReadChromaSampling(dir.File("a.png")).value(), ChromaSampling::kNotJpeg);
-  EXPECT_EQ(ReadChromaSampling(dir.File("a.jpg")).value(), ChromaSampling::kSubsampled);
-  EXPECT_EQ(ReadChromaSampling(dir.File("grey.jpg")).value(), ChromaSampling::kFull);
+  EXPECT_EQ(ReadChromaSampling(dir.File("a.png")).value(), ChromaSampling::Full());
+  EXPECT_EQ(ReadChromaSampling(dir.File("a.jpg")).value(), ChromaSampling::Jpeg420());
+  EXPECT_EQ(ReadChromaSampling(dir.File("a.jpg"))->Name(), "4:2:0");
+  EXPECT_EQ(ReadChromaSampling(dir.File("grey.jpg")).value(), ChromaSampling::Full());
 
   // The same colour file with its baseline frame header (SOF0: FF C0, length, precision,
   // height, width, 3 components of id, sampling HV, table) saying 1×1 for luma: 4:4:4.
@@ -146,7 +147,11 @@ TEST(ReadChromaSamplingTest, ReadsTheJpegFrameHeader) {
   ASSERT_EQ(static_cast<unsigned char>((*bytes)[sof + 11]), 0x22u);  // luma 2×2
   (*bytes)[sof + 11] = 0x11;
   test::WriteText(dir.File("full.jpg"), *bytes);
-  EXPECT_EQ(ReadChromaSampling(dir.File("full.jpg")).value(), ChromaSampling::kFull);
+  EXPECT_EQ(ReadChromaSampling(dir.File("full.jpg")).value(), ChromaSampling::Full());
+  // Luma 2×1: 4:2:2.
+  (*bytes)[sof + 11] = 0x21;
+  test::WriteText(dir.File("422.jpg"), *bytes);
+  EXPECT_EQ(ReadChromaSampling(dir.File("422.jpg")).value(), ChromaSampling::Jpeg422());
 
   test::WriteText(dir.File("broken.jpg"), std::string("\xFF\xD8\xFF\xE0") + " not a header");
   const StatusOr<ChromaSampling> broken = ReadChromaSampling(dir.File("broken.jpg"));

@@ -33,6 +33,26 @@ TEST(LinearTableTest, LogEncodingSpansItsStops) {
   EXPECT_NEAR(std::log2(log[255] / log[1]), 8.0 * 254.0 / 255.0, 1e-5);
 }
 
+// Decode and Encode are the table as a continuous curve: at integer codes Decode is the table,
+// between them linear; Encode inverts it for every response, including the flat start of a
+// log encoding (code 0 = black) and values outside the table (clamped).
+TEST(LinearTableTest, EncodeInvertsDecodeBetweenCodes) {
+  for (const ImageResponse& response : {ImageResponse(), ImageResponse::Gamma(1.0),
+                                        ImageResponse::Gamma(2.6), ImageResponse::Log(10.0)}) {
+    SCOPED_TRACE(response.Name());
+    const LinearTable table(response);
+    EXPECT_DOUBLE_EQ(table.Decode(77.0), table[77]);
+    EXPECT_DOUBLE_EQ(table.Decode(77.25), 0.75 * table[77] + 0.25 * table[78]);
+    for (double code = 0.0; code <= 255.0; code += 0.37) {
+      if (table.Decode(code) <= table[0]) continue;  // flat: no unique inverse
+      EXPECT_NEAR(table.Encode(table.Decode(code)), code, 1e-3) << code;
+    }
+    EXPECT_EQ(table.Encode(-0.5), 0.0);
+    EXPECT_EQ(table.Encode(1.5), 255.0);
+    EXPECT_EQ(table.Decode(300.0), table[255]);
+  }
+}
+
 TEST(ImageResponseTest, NamesValidityAndEquality) {
   const ImageResponse srgb;
   const ImageResponse linear = ImageResponse::Gamma(1.0);

@@ -231,6 +231,109 @@ TEST(FitEdgeAcrossTest, EdgesAreDecodedWithTheCameraResponse) {
   }
 }
 
+// A straight edge through `point` with outward unit `normal` (inside, `inside` linear BGR; the
+// other side `outside`), blurred by a Gaussian of σ = blur_px and sRGB-encoded.
+cv::Mat3b ObliqueEdgeImage(const Eigen::Vector2d& point, const Eigen::Vector2d& normal,
+                           double blur_px, const Eigen::Vector3d& inside,
+                           const Eigen::Vector3d& outside) {
+  cv::Mat3b image(96, 96);
+  for (int y = 0; y < image.rows; ++y) {
+    for (int x = 0; x < image.cols; ++x) {
+      const double distance = normal.dot(Eigen::Vector2d(x, y) - point);
+      const double outside_fraction = 0.5 * std::erfc(-distance / (blur_px * std::sqrt(2.0)));
+      for (int c = 0; c < 3; ++c) {
+        const double linear = inside[c] + (outside[c] - inside[c]) * outside_fraction;
+        const double encoded =
+            linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+        image(y, x)[c] = static_cast<unsigned char>(std::lround(255.0 * encoded));
+      }
+    }
+  }
+  return image;
+}
+
+// Mean and root mean square of the edge's error across lines along it, over the lines found,
+// and the fraction found, measured on `image` (whose edge passes through `point` with `normal`)
+// as stored with `sampling`.
+struct EdgeErrors {
+  double mean_px = 0.0;
+  double rms_px = 0.0;
+  double found = 0.0;
+};
+EdgeErrors ErrorsAlongEdge(const cv::Mat3b& image, const Eigen::Vector2d& point,
+                           const Eigen::Vector2d& normal, const ChromaSampling& sampling) {
+  const Eigen::Vector2d tangent(-normal.y(), normal.x());
+  double sum = 0.0, squares = 0.0;
+  int lines = 0, found = 0;
+  for (double t = -20.0; t <= 20.0; t += 0.5) {
+    ++lines;
+    EdgeFit fit;
+    if (FitEdgeAcross(image, LinearTable(), point + t * tangent, normal, EdgeLineOptions(), &fit,
+                      sampling) != EdgeAcross::kFound) {
+      continue;
+    }
+    sum += fit.mean_px;
+    squares += fit.mean_px * fit.mean_px;
+    ++found;
+  }
+  if (found == 0) return {std::nan(""), std::nan(""), 0.0};
+  return {sum / found, std::sqrt(squares / found), static_cast<double>(found) / lines};
+}
+
+// The codec model is libjpeg's: real 4:2:0 JPEGs (quality 100, so quantisation is small) of
+// straight edges between colours that differ more in hue than in brightness, at sub-pixel
+// positions. At angles away from the pixel axes, measured as full-resolution colour, the edges
+// move outward by 0.08–0.17 px on average along them (0.09–0.25 px RMS); with the codec's shift
+// taken off, by at most 0.05 px (0.02 px over all cases, RMS 0.03–0.1 px), and at least 95 % of
+// the lines are still found (a line whose simulated fits fail is rejected). Along a pixel
+// axis the shift depends on the edge's position in the 2×2 blocks so strongly (−0.34…+0.73 px)
+// that the fit's centre and width do not identify the edge: there the correction is weak or the
+// lines are rejected (reported, not asserted).
+constexpr double kCorrectedChromaMeanPx = 0.06;
+constexpr double kCorrectedChromaRmsPx = 0.12;
+
+TEST(FitEdgeAcrossTest, SubsampledChromaIsCorrectedFor) {
+  const Eigen::Vector3d blue(0.55, 0.12, 0.03), orange(0.03, 0.18, 0.6);  // BGR, linear
+  const Eigen::Vector3d dark_blue(0.25, 0.05, 0.01), green(0.05, 0.3, 0.08);
+  double uncorrected_sum = 0.0, corrected_sum = 0.0;
+  int oblique_cases = 0;
+  for (const auto& [inside, outside] : {std::pair(blue, orange), std::pair(dark_blue, green)}) {
+    for (double angle_deg : {0.0, 20.0, 45.0, 70.0}) {
+      for (double offset : {0.0, 0.25, 0.5, 0.75}) {
+        SCOPED_TRACE(testing::Message() << (inside == blue ? "blue" : "dark blue") << ", angle "
+                                        << angle_deg << ", offset " << offset);
+        const double angle = angle_deg * M_PI / 180.0;
+        const Eigen::Vector2d normal(std::cos(angle), std::sin(angle));
+        const Eigen::Vector2d point(48.0 + offset, 48.0 + 0.5 * offset);
+        const cv::Mat3b image = ObliqueEdgeImage(point, normal, 0.7, inside, outside);
+        std::vector<unsigned char> bytes;
+        // OpenCV writes colour JPEGs 4:2:0 (ReadChromaSamplingTest).
+        ASSERT_TRUE(cv::imencode(".jpg", image, bytes, {cv::IMWRITE_JPEG_QUALITY, 100}));
+        const cv::Mat3b decoded = cv::imdecode(bytes, cv::IMREAD_COLOR);
+        const EdgeErrors uncorrected =
+            ErrorsAlongEdge(decoded, point, normal, ChromaSampling::Full());
+        const EdgeErrors corrected =
+            ErrorsAlongEdge(decoded, point, normal, ChromaSampling::Jpeg420());
+        std::printf(
+            "%-9s angle %2.0f offset %.2f: 4:2:0 as full colour %+.3f / %.3f px, "
+            "corrected %+.3f / %.3f px (%.0f %% found)\n",
+            inside == blue ? "blue" : "dark blue", angle_deg, offset, uncorrected.mean_px,
+            uncorrected.rms_px, corrected.mean_px, corrected.rms_px, 100.0 * corrected.found);
+        if (angle_deg == 0.0) continue;
+        EXPECT_GT(uncorrected.mean_px, 0.05);
+        EXPECT_GE(corrected.found, 0.95);
+        EXPECT_LT(std::abs(corrected.mean_px), kCorrectedChromaMeanPx);
+        EXPECT_LT(corrected.rms_px, kCorrectedChromaRmsPx);
+        uncorrected_sum += uncorrected.mean_px;
+        corrected_sum += corrected.mean_px;
+        ++oblique_cases;
+      }
+    }
+  }
+  EXPECT_GT(uncorrected_sum / oblique_cases, 0.1);
+  EXPECT_LT(std::abs(corrected_sum / oblique_cases), 0.03);
+}
+
 // Changes a view's image before it is tracked, given its camera and the true cam_from_object.
 using ImageEdit =
     std::function<void(const RayCaster&, const Camera&, const Eigen::Isometry3d&, cv::Mat3b*)>;

@@ -54,6 +54,11 @@ struct ViewSelection {
   std::vector<double> weights;
 };
 
+// How the frames store chroma, for the edge stage's correction of subsampled chroma
+// (edge_lines.h): read from each camera's first frame (a JPEG's header; any other format is
+// full), or set, e.g. for lossless frames transcoded from 4:2:0 JPEG.
+enum class ChromaSamplingSetting { kAuto, kFull, kJpeg420, kJpeg422 };
+
 struct AnnotateOptions {
   // The optim layer's defaults, except the rounds: 2 per tracked frame (the edge stage then
   // places the contour) and 5 per bootstrap solve of frame 0 (docs/notes/issue19_speed.md),
@@ -64,6 +69,7 @@ struct AnnotateOptions {
 
   MultiViewTrackerOptions tracker;
   ViewSelection views;
+  ChromaSamplingSetting chroma_sampling = ChromaSamplingSetting::kAuto;
   QualityOptions quality;
   // The temporal smoothing window after the per-frame solves (off unless enabled).
   WindowProblemOptions window;

@@ -153,6 +153,11 @@ struct AnnotationOutcome {
 // together in one note. Files that cannot be read are left to the solve to report.
 std::vector<std::string> CaptureNotes(const Sequence& sequence);
 
+// How the frames of rig camera `index` store chroma for the edge stage: `setting`, or with
+// kAuto read from the camera's first frame (ReadChromaSampling). Errors name the file.
+StatusOr<ChromaSampling> ResolveChromaSampling(const Sequence& sequence, int index,
+                                               ChromaSamplingSetting setting);
+
 // The end of a run, after the poses, frames.csv and config.resolved.yaml are written: the
 // quality files of `quality` (measured on `rig_from_object`; its provenance is set here), then
 // DONE.

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "bcot/core/camera.h"
+#include "bcot/core/chroma_sampling.h"
 #include "bcot/core/status.h"
 
 namespace bcot {
@@ -19,18 +20,9 @@ StatusOr<cv::Mat3b> ReadColorImage(const std::string& path);
 // is not `camera`'s image_size in rig.yaml.
 StatusOr<cv::Mat3b> ReadCameraImage(const std::string& path, const Camera& camera);
 
-// How an image file stores colour. A JPEG keeps luma (Y) at full resolution and its two
-// chroma planes (Cb, Cr) either at full resolution too (4:4:4) or subsampled (4:2:2, 4:2:0:
-// colour at half resolution, what most cameras and codecs write). Subsampled chroma blurs and
-// shifts the edges of colour the annotation measures (docs/notes/issue12_coverage_floor.md).
-enum class ChromaSampling {
-  kNotJpeg,     // not a JPEG (PNG and other lossless formats keep every channel)
-  kFull,        // JPEG 4:4:4, or a single-channel JPEG
-  kSubsampled,  // JPEG with chroma at a lower resolution than luma
-};
-
-// The chroma sampling of the image file at `path`, from its JPEG frame header alone (no pixel
-// is decoded). kInvalidInput naming the file when it cannot be read or its header is corrupt.
+// The chroma sampling of the image file at `path`: from its JPEG frame header alone (no pixel
+// is decoded), full for any other format. kInvalidInput naming the file when it cannot be read
+// or its JPEG header is corrupt.
 StatusOr<ChromaSampling> ReadChromaSampling(const std::string& path);
 
 }  // namespace bcot

@@ -87,8 +87,19 @@ class LinearTable {
   explicit LinearTable(const ImageResponse& response = ImageResponse());
   float operator[](int code) const { return table_[code]; }
 
+  // The table as a continuous curve (linear between consecutive codes), for codes that are not
+  // integers (an image's codes as a codec model predicts them): the linear value of a code in
+  // [0, 255] (clamped), and the inverse, the code of a linear value (clamped to [0, 255]), so
+  // that Decode(Encode(v)) = v for v in [table[0], 1].
+  double Decode(double code) const;
+  double Encode(double linear) const;
+
  private:
+  // Encode's index: for each of kBuckets equal parts [b, b + 1) / kBuckets of [0, 1], the
+  // largest code whose value is at most b / kBuckets.
+  static constexpr int kBuckets = 1024;
   std::array<float, 256> table_;
+  std::array<unsigned char, kBuckets> bucket_code_;
 };
 
 // True when bilinear sampling at `p` stays inside an image of `size` (p and its 2×2

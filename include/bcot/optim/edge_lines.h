@@ -35,6 +35,16 @@
 // is therefore left out of d (its step cannot be located); the line is ambiguous when the
 // remaining channels have less than min_contrast.
 //
+// Subsampled chroma. In a JPEG with 4:2:0 or 4:2:2 chroma (chroma_sampling.h) the decoded edge
+// is a sharp luma step plus a blurred chroma step whose shape depends on where the edge falls in
+// the codec's 2×2 blocks; its fitted centre moves (up to a few tenths of a pixel, most where the
+// two sides differ in hue more than in brightness: docs/notes/issue12_jpeg_chroma.md). The move
+// is predicted and taken off (ChromaSubsamplingShift): the fitted edge, each channel's step
+// fitted at the found μ and w, is drawn on the pixel grid around the line (codes through the
+// inverse response), passed through the codec's chroma path (SimulateChromaSubsampling), and
+// the same fit run on both drawings; their difference is the codec's shift at this line's
+// position, colours and angle. Quantisation is left as noise.
+//
 // The line becomes a CorrespondenceLine with mean_px = μ and sigma_px = σ_μ, so the pose stage
 // reuses CorrespondenceLineCostFunction: r = (n·(x_X(T) − x0) − μ)/σ.
 //
@@ -54,6 +64,7 @@
 #include <vector>
 
 #include "bcot/core/camera.h"
+#include "bcot/core/chroma_sampling.h"
 #include "bcot/core/linear_rgb.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/correspondence_lines.h"
@@ -113,10 +124,13 @@ struct EdgeFit {
   double step = 0.0;      // b
 };
 
-// Fits the blurred step to a scalar profile `values[k]` at offsets first_offset_px + k·step_px.
-// Returns false when a rejection rule above (contrast excepted) applies.
+// Fits the blurred step to a scalar profile `values[k]` at offsets first_offset_px + k·step_px,
+// in at most `max_iterations` Levenberg-Marquardt steps. Returns false when a rejection rule
+// above (contrast excepted) applies or the fit has not converged.
+constexpr int kEdgeFitIterations = 30;
 bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
-                    const EdgeLineOptions& options, EdgeFit* fit);
+                    const EdgeLineOptions& options, EdgeFit* fit,
+                    int max_iterations = kEdgeFitIterations);
 
 // The linear-RGB samples of one line across an edge: colors[k] at centre + (k − half)·step_px·
 // normal (half = ⌊window_px / step_px⌋), the mean colours over s ∈ [−window, −1] (inside) and
@@ -137,20 +151,43 @@ bool SampleEdgeLine(const cv::Mat3b& image, const LinearTable& table, const Eige
 
 // The edge across one line (the profile, contrast direction and fit above) through `centre`
 // along the unit `normal` (inside → outside) of `image` (BGR, its codes decoded by `table`, built
-// from options.response by the caller once for many lines): kFound and `fit` (offsets along the
-// normal from centre, σ unfloored), or why not.
+// from options.response by the caller once for many lines; its chroma stored with `sampling`,
+// corrected for as above when subsampled): kFound and `fit` (offsets along the normal from
+// centre, σ unfloored), or why not.
 enum class EdgeAcross { kFound, kOffImage, kAmbiguous };
 EdgeAcross FitEdgeAcross(const cv::Mat3b& image, const LinearTable& table,
                          const Eigen::Vector2d& centre, const Eigen::Vector2d& normal,
-                         const EdgeLineOptions& options, EdgeFit* fit);
+                         const EdgeLineOptions& options, EdgeFit* fit,
+                         const ChromaSampling& sampling = ChromaSampling());
+
+// What the codec's chroma sampling does to one line's fitted edge ("Subsampled chroma" above).
+struct ChromaShift {
+  // The decoded edge's centre minus the edge's (px): subtracted from the fitted μ.
+  double shift_px = 0.0;
+  // dμ_decoded / dμ_edge at the edge, in [kMinSensitivity, kMaxSensitivity]: where the edge's
+  // position in the codec's blocks makes the decoded centre move slower than the edge, the
+  // fitted μ says less about the edge; σ_μ is divided by it.
+  double sensitivity = 1.0;
+};
+constexpr double kMinSensitivity = 0.25;
+constexpr double kMaxSensitivity = 4.0;
+
+// The ChromaShift of the line through `centre` along `normal` whose `samples` (SampleEdgeLine)
+// were fitted as `fit`, for chroma stored with `sampling`. False when a simulated fit fails or
+// the sampling is not simulated.
+bool ChromaSubsamplingShift(const EdgeLineSamples& samples, const EdgeFit& fit,
+                            const LinearTable& table, const Eigen::Vector2d& centre,
+                            const Eigen::Vector2d& normal, const EdgeLineOptions& options,
+                            const ChromaSampling& sampling, ChromaShift* shift);
 
 // Builds the edge lines of one view at T0 (rig_from_objcentre). `silhouette` must be
-// RenderSilhouette at cam_from_rig · T0 · objcentre_from_template. Errors as
-// BuildCorrespondenceLines.
+// RenderSilhouette at cam_from_rig · T0 · objcentre_from_template; `sampling` is how `image`'s
+// chroma was stored. Errors as BuildCorrespondenceLines.
 StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Camera& camera,
                                              const Eigen::Isometry3d& cam_from_rig,
                                              const Eigen::Isometry3d& rig_from_objcentre,
                                              const cv::Mat3b& image, const Silhouette& silhouette,
-                                             const EdgeLineOptions& options = {});
+                                             const EdgeLineOptions& options = {},
+                                             const ChromaSampling& sampling = ChromaSampling());
 
 }  // namespace bcot

@@ -49,6 +49,7 @@
 #include <vector>
 
 #include "bcot/core/camera.h"
+#include "bcot/core/chroma_sampling.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/color_model.h"
 #include "bcot/optim/correspondence_lines.h"
@@ -160,6 +161,8 @@ struct FrameView {
   double weight = 1.0;  // w_v >= 0 of eq. 8
   // Posteriors of the full-resolution (level 0) rounds; null = color_model.
   const ColorModel* refine_color_model = nullptr;
+  // How `image`'s chroma was stored (a subsampled JPEG's is corrected for by the edge stage).
+  ChromaSampling chroma = ChromaSampling::Full();
 };
 
 enum class FrameTermination {

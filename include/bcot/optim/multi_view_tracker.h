@@ -79,6 +79,8 @@ struct TrackedView {
   Camera camera;
   Eigen::Isometry3d cam_from_rig = Eigen::Isometry3d::Identity();
   double weight = 1.0;  // w_v >= 0 of eq. 8
+  // How the view's images store chroma (FrameView::chroma).
+  ChromaSampling chroma = ChromaSampling::Full();
 };
 
 class MultiViewTracker {
