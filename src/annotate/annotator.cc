@@ -626,8 +626,9 @@ std::vector<std::string> CaptureNotes(const Sequence& sequence) {
   return {fmt::format(
       "{}: JPEG frames with subsampled chroma: colour is kept at half resolution, which blurs "
       "and shifts the edges the annotation is measured on; the edge stage takes the shift off "
-      "(edge.chroma_sampling), but on our renders such frames still cost a quarter of the "
-      "precision; record PNG or 4:4:4 JPEG if you can (docs/notes/issue12_jpeg_chroma.md)",
+      "(edge.chroma_sampling), but on our renders the rotation error was still a third to a "
+      "half above PNG frames'; record PNG or 4:4:4 JPEG if you can "
+      "(docs/notes/issue12_jpeg_chroma.md)",
       fmt::join(subsampled, ", "))};
 }
 

@@ -37,13 +37,17 @@
 //
 // Subsampled chroma. In a JPEG with 4:2:0 or 4:2:2 chroma (chroma_sampling.h) the decoded edge
 // is a sharp luma step plus a blurred chroma step whose shape depends on where the edge falls in
-// the codec's 2×2 blocks; its fitted centre moves (up to a few tenths of a pixel, most where the
-// two sides differ in hue more than in brightness: docs/notes/issue12_jpeg_chroma.md). The move
-// is predicted and taken off (ChromaSubsamplingShift): the fitted edge, each channel's step
-// fitted at the found μ and w, is drawn on the pixel grid around the line (codes through the
-// inverse response), passed through the codec's chroma path (SimulateChromaSubsampling), and
-// the same fit run on both drawings; their difference is the codec's shift at this line's
-// position, colours and angle. Quantisation is left as noise.
+// the codec's 2×2 blocks; its fitted centre moves (on average 0.08–0.17 px outward on oblique
+// edges between colours that differ more in hue than in brightness, up to ±0.7 px along a pixel
+// axis: docs/notes/issue12_jpeg_chroma.md). The move is predicted and taken off
+// (ChromaSubsamplingShift): an ideal edge (a Gaussian-blurred step between two linear colours)
+// is drawn as codes on the pixel grid around the line (through the inverse response), passed
+// through the codec's chroma path (SimulateChromaSubsampling) and fitted as an image line; its
+// centre, width and colours beyond ±1.5 px are adjusted until its decoded fit matches the
+// observed one (indirect inference: μ by secant steps, the rest by fixed-point steps, three
+// simulations). The shift is its decoded fit's μ minus the same fit's μ on the drawing without
+// the codec; σ_μ is divided by the decoded centre's sensitivity to the edge's position.
+// Quantisation is left as noise.
 //
 // The line becomes a CorrespondenceLine with mean_px = μ and sigma_px = σ_μ, so the pose stage
 // reuses CorrespondenceLineCostFunction: r = (n·(x_X(T) − x0) − μ)/σ.
