@@ -243,6 +243,34 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
   return true;
 }
 
+namespace {
+
+// The mean of `colors` (colors[k] at offset (k − half)·step_px along the line) over offsets at
+// least `gap_px` before `centre_px` (inside) and at least `gap_px` after it (outside); returns
+// the smaller of the two sample counts (a side without samples keeps a zero mean).
+int SideMeans(const std::vector<Eigen::Vector3d>& colors, double step_px, double centre_px,
+              double gap_px, Eigen::Vector3d* inside, Eigen::Vector3d* outside) {
+  const int half = static_cast<int>(colors.size() / 2);
+  *inside = Eigen::Vector3d::Zero();
+  *outside = Eigen::Vector3d::Zero();
+  int inside_count = 0, outside_count = 0;
+  for (int k = 0; k < static_cast<int>(colors.size()); ++k) {
+    const double s = (k - half) * step_px - centre_px;
+    if (s <= -gap_px) {
+      *inside += colors[k];
+      ++inside_count;
+    } else if (s >= gap_px) {
+      *outside += colors[k];
+      ++outside_count;
+    }
+  }
+  *inside /= std::max(1, inside_count);
+  *outside /= std::max(1, outside_count);
+  return std::min(inside_count, outside_count);
+}
+
+}  // namespace
+
 bool SampleEdgeLine(const cv::Mat3b& image, const LinearTable& table, const Eigen::Vector2d& centre,
                     const Eigen::Vector2d& normal, const EdgeLineOptions& options,
                     EdgeLineSamples* samples) {
@@ -253,24 +281,13 @@ bool SampleEdgeLine(const cv::Mat3b& image, const LinearTable& table, const Eige
     return false;
   }
   samples->colors.resize(2 * half + 1);
-  Eigen::Vector3d inside = Eigen::Vector3d::Zero(), outside = Eigen::Vector3d::Zero();
   Eigen::Vector3d peak = Eigen::Vector3d::Zero();
-  int inside_count = 0, outside_count = 0;
   for (int k = -half; k <= half; ++k) {
-    const double s = k * h;
-    Eigen::Vector3d& color = samples->colors[k + half];
-    color = SampleLinearRgb(image, table, centre + s * normal);
-    peak = peak.cwiseMax(PeakLinearRgb(image, table, centre + s * normal));
-    if (s <= -1.0) {
-      inside += color;
-      ++inside_count;
-    } else if (s >= 1.0) {
-      outside += color;
-      ++outside_count;
-    }
+    const Eigen::Vector2d p = centre + k * h * normal;
+    samples->colors[k + half] = SampleLinearRgb(image, table, p);
+    peak = peak.cwiseMax(PeakLinearRgb(image, table, p));
   }
-  samples->inside = inside / std::max(1, inside_count);
-  samples->outside = outside / std::max(1, outside_count);
+  SideMeans(samples->colors, h, 0.0, 1.0, &samples->inside, &samples->outside);
   samples->peak = peak;
   return true;
 }
@@ -299,24 +316,7 @@ constexpr double kPlateauPx = 1.5;
 
 bool PlateauColours(const EdgeLineSamples& samples, double mean_px, const EdgeLineOptions& options,
                     Eigen::Vector3d* inside, Eigen::Vector3d* outside) {
-  const int half = static_cast<int>(samples.colors.size() / 2);
-  *inside = Eigen::Vector3d::Zero();
-  *outside = Eigen::Vector3d::Zero();
-  int inside_count = 0, outside_count = 0;
-  for (int k = 0; k < static_cast<int>(samples.colors.size()); ++k) {
-    const double s = (k - half) * options.step_px - mean_px;
-    if (s <= -kPlateauPx) {
-      *inside += samples.colors[k];
-      ++inside_count;
-    } else if (s >= kPlateauPx) {
-      *outside += samples.colors[k];
-      ++outside_count;
-    }
-  }
-  if (inside_count < 2 || outside_count < 2) return false;
-  *inside /= inside_count;
-  *outside /= outside_count;
-  return true;
+  return SideMeans(samples.colors, options.step_px, mean_px, kPlateauPx, inside, outside) >= 2;
 }
 
 // An ideal edge for the codec simulation: per channel a step between two linear colours,
@@ -349,26 +349,14 @@ EdgeLineSamples SamplePatchLine(const cv::Mat3d& patch, const Eigen::Vector2i& o
   };
   EdgeLineSamples samples;
   samples.colors.resize(2 * half + 1);
-  int inside_count = 0, outside_count = 0;
   for (int k = -half; k <= half; ++k) {
-    const double s = k * h;
-    const Eigen::Vector2d p = centre + s * normal;
+    const Eigen::Vector2d p = centre + k * h * normal;
     const int x0 = static_cast<int>(std::floor(p.x())), y0 = static_cast<int>(std::floor(p.y()));
     const double fx = p.x() - x0, fy = p.y() - y0;
-    const Eigen::Vector3d color =
-        (1 - fy) * ((1 - fx) * linear(x0, y0) + fx * linear(x0 + 1, y0)) +
-        fy * ((1 - fx) * linear(x0, y0 + 1) + fx * linear(x0 + 1, y0 + 1));
-    samples.colors[k + half] = color;
-    if (s <= -1.0) {
-      samples.inside += color;
-      ++inside_count;
-    } else if (s >= 1.0) {
-      samples.outside += color;
-      ++outside_count;
-    }
+    samples.colors[k + half] = (1 - fy) * ((1 - fx) * linear(x0, y0) + fx * linear(x0 + 1, y0)) +
+                               fy * ((1 - fx) * linear(x0, y0 + 1) + fx * linear(x0 + 1, y0 + 1));
   }
-  samples.inside /= std::max(1, inside_count);
-  samples.outside /= std::max(1, outside_count);
+  SideMeans(samples.colors, h, 0.0, 1.0, &samples.inside, &samples.outside);
   samples.peak = peak;
   return samples;
 }
