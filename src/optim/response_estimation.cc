@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "bcot/core/se3.h"
+#include "bcot/core/violations.h"
 #include "bcot/optim/edge_lines.h"
 #include "bcot/optim/silhouette.h"
-#include "bcot/core/violations.h"
 
 namespace bcot {
 namespace {
@@ -85,7 +85,10 @@ double PolarityFeature(const cv::Mat3b& image, const LinearTable& table,
   return weights > 0.0 ? weighted / weights : 0.0;
 }
 
-// The edge lines `problem` measures at `rig_from_objcentre` (a pose it solved) in every view.
+// The edge lines `problem` measures at `rig_from_objcentre` (a pose it solved) in every view,
+// as its last edge round measures them: with each view's subsampled chroma corrected for. That
+// shift moves an edge with its colours much as a wrong response does
+// (docs/notes/issue12_jpeg_chroma.md), so left in, it would be read as the response's.
 std::vector<PolarLine> MeasurePolarLines(const FrameProblem& problem,
                                          const std::vector<FrameView>& views,
                                          const Eigen::Isometry3d& rig_from_objcentre) {
@@ -103,7 +106,7 @@ std::vector<PolarLine> MeasurePolarLines(const FrameProblem& problem,
         problem.options().region.contour, kPointStridePx);
     const StatusOr<CorrespondenceLines> measured =
         BuildEdgeLines(caster, *view.camera, view.cam_from_rig, rig_from_objcentre, *view.image,
-                       silhouette, options);
+                       silhouette, options, view.chroma);
     BCOT_CHECK(measured.ok());  // validated with the problem's options
     for (const CorrespondenceLine& line : measured->lines) {
       lines.push_back(

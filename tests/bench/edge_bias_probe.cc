@@ -3,7 +3,8 @@
 //
 // For a sequence with ground truth (`bcot synth` or scripts/pbr_synth.sh), per camera and frame
 // the edge lines of the edge stage (BuildEdgeLines, bcot/optim/edge_lines.h, with the config's
-// `edge:` options) are measured at the ground-truth pose, whose contour is the true silhouette
+// `edge:` options and each camera's chroma sampling as edge.chroma_sampling resolves it) are
+// measured at the ground-truth pose, whose contour is the true silhouette
 // (pbr_gt_check proves it to a few hundredths of a pixel for the Blender renders). A line's μ is
 // then the measurement's own error along the outward normal (+ = the image edge is found
 // outside the true contour). Lines are binned by the direction of their normal in the image:
@@ -41,6 +42,7 @@
 #include <vector>
 
 #include "bcot/annotate/annotate_options.h"
+#include "bcot/annotate/annotator.h"
 #include "bcot/core/image_io.h"
 #include "bcot/core/linear_rgb.h"
 #include "bcot/core/pose_io.h"
@@ -223,6 +225,15 @@ int main(int argc, char** argv) {
   const EdgeLineOptions& edge = frame.edge.lines;
   const int frames =
       max_frames > 0 ? std::min(max_frames, sequence->num_frames) : sequence->num_frames;
+  // Each camera's chroma sampling as the annotation resolves it (edge.chroma_sampling); the
+  // coverage is full-resolution colour.
+  std::vector<ChromaSampling> chroma(sequence->rig.size(), ChromaSampling::Full());
+  for (int v = 0; v < sequence->rig.size() && !coverage_mask; ++v) {
+    const StatusOr<ChromaSampling> resolved =
+        ResolveChromaSampling(*sequence, v, options->chroma_sampling);
+    if (!resolved.ok()) return Fail(resolved.status().message());
+    chroma[v] = *resolved;
+  }
 
   if (response_frames > 0) {
     const FrameProblem problem(caster, frame);
@@ -250,6 +261,7 @@ int main(int argc, char** argv) {
         view.camera = &sequence->rig[v].camera;
         view.cam_from_rig = sequence->rig[v].cam_from_rig;
         view.image = &images[v];
+        view.chroma = chroma[v];
         views.push_back(view);
       }
       const StatusOr<ResponseEstimate> estimate =
@@ -292,8 +304,9 @@ int main(int argc, char** argv) {
       }
       const Silhouette silhouette =
           RenderSilhouette(caster, camera.camera, camera.cam_from_rig * (*gt)[f], ContourOptions{});
-      const StatusOr<CorrespondenceLines> lines = BuildEdgeLines(
-          caster, camera.camera, camera.cam_from_rig, rig_from_objcentre, *image, silhouette, edge);
+      const StatusOr<CorrespondenceLines> lines =
+          BuildEdgeLines(caster, camera.camera, camera.cam_from_rig, rig_from_objcentre, *image,
+                         silhouette, edge, chroma[v]);
       if (!lines.ok()) return Fail(lines.status().message());
       candidates += lines->candidates;
       for (const CorrespondenceLine& line : lines->lines) {
@@ -301,8 +314,8 @@ int main(int argc, char** argv) {
         bins[BinOf(line.normal)].Add(line.mean_px);
         total[BinOf(line.normal)].Add(line.mean_px);
         EdgeFit fit;
-        if (fits != nullptr && FitEdgeAcross(*image, linear, line.centre, line.normal, edge,
-                                             &fit) == EdgeAcross::kFound) {
+        if (fits != nullptr && FitEdgeAcross(*image, linear, line.centre, line.normal, edge, &fit,
+                                             chroma[v]) == EdgeAcross::kFound) {
           std::fprintf(fits, "%s %d %s %+.4f %.4f %.4f %+.5f\n", camera.camera.name.c_str(), f,
                        kBins[BinOf(line.normal)], fit.mean_px, fit.sigma_px, fit.width_px,
                        fit.step);
