@@ -5,6 +5,7 @@
 #include <ceres/solver.h>
 #include <fmt/format.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -12,47 +13,86 @@
 #include <utility>
 
 #include "bcot/core/se3.h"
+#include "bcot/core/violations.h"
 #include "bcot/optim/correspondence_line_cost.h"
 #include "bcot/optim/motion_prior_cost.h"
 #include "bcot/optim/pose_gaussian_cost.h"
 #include "bcot/optim/region_cost.h"
 #include "bcot/optim/se3_manifold.h"
-#include "bcot/core/violations.h"
 
 namespace bcot {
 namespace {
 
-// Robust per-axis variance of zero-mean 3-vectors: median of ‖d‖²/3 ÷ 0.789 (the median of
-// χ²₃/3), so one lost frame's jump does not inflate it.
-double RobustAxisVariance(std::vector<double> squared_norms) {
-  const size_t mid = squared_norms.size() / 2;
-  std::nth_element(squared_norms.begin(), squared_norms.begin() + mid, squared_norms.end());
-  return squared_norms[mid] / 3.0 / 0.789;
-}
-
-// The per-axis variance s² of the k-th differences (k = 2 or 3) of `values`; −1 when there
-// are fewer than 5 of them.
-double DifferenceVariance(const std::vector<Eigen::Vector3d>& values, int k) {
-  std::vector<double> squared_norms;
+// The k-th differences (k = 2 or 3) of `values`.
+std::vector<Eigen::Vector3d> Differences(const std::vector<Eigen::Vector3d>& values, int k) {
+  std::vector<Eigen::Vector3d> differences;
   for (size_t t = 0; t + k < values.size(); ++t) {
-    const Eigen::Vector3d d = k == 2
-                                  ? Eigen::Vector3d(values[t + 2] - 2.0 * values[t + 1] + values[t])
-                                  : Eigen::Vector3d(values[t + 3] - 3.0 * values[t + 2] +
-                                                    3.0 * values[t + 1] - values[t]);
-    squared_norms.push_back(d.squaredNorm());
+    differences.push_back(k == 2 ? Eigen::Vector3d(values[t + 2] - 2.0 * values[t + 1] + values[t])
+                                 : Eigen::Vector3d(values[t + 3] - 3.0 * values[t + 2] +
+                                                   3.0 * values[t + 1] - values[t]));
   }
-  if (squared_norms.size() < 5) return -1.0;
-  return RobustAxisVariance(std::move(squared_norms));
+  return differences;
 }
 
-// σ_k = max(σ_k, √(s² − c·σ_n²)·unit) for each axis, c the variance of the k-th difference of
-// unit white noise (1 + 4 + 1 = 6 for k = 2, 1 + 9 + 9 + 1 = 20 for k = 3); unchanged when
-// s² < 0 (too few spans).
-void RaiseSigmas(double s2, int k, double noise_variance, double unit,
-                 std::array<double, 3>* sigmas) {
-  if (s2 < 0.0) return;
+// Robust variance of `values`' squares' distribution: the median of the squares ÷ `median`
+// (the median of the χ² the squares follow when the values are Gaussian of unit variance).
+double RobustVariance(std::vector<double> squares, double median) {
+  const size_t mid = squares.size() / 2;
+  std::nth_element(squares.begin(), squares.begin() + mid, squares.end());
+  return squares[mid] / median;
+}
+
+// The motion's variance m² per axis in its k-th differences `differences`, with the noise's
+// share removed (header of AdaptedPriorOptions); −1 when there are fewer than 5 differences.
+double MotionVariance(const std::vector<Eigen::Vector3d>& differences, const Eigen::Matrix3d& noise,
+                      int k) {
+  if (differences.size() < 5) return -1.0;
+  // Medians of χ²₁ and χ²₃ (the latter as 3 × 0.789, the median of χ²₃/3).
+  constexpr double kMedianChiSquare1 = 0.4549, kMedianChiSquare3 = 3.0 * 0.789;
+  // Below this ratio of the largest to the smallest noise variance, the noise's scale and the
+  // motion cannot be told apart from a window's spans (each s_i², a median of some 35 squares,
+  // is known to about ±40 %).
+  constexpr double kSeparableNoiseRatio = 10.0;
   const double noise_factor = k == 2 ? 6.0 : 20.0;
-  const double motion = std::sqrt(std::max(0.0, s2 - noise_factor * noise_variance)) * unit;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(noise);
+  const Eigen::Vector3d g = noise_factor * principal.eigenvalues().cwiseMax(0.0);
+  std::vector<double> squares(differences.size());
+  if (!(g.maxCoeff() >= kSeparableNoiseRatio * g.minCoeff()) || !(g.minCoeff() > 0.0)) {
+    for (size_t t = 0; t < differences.size(); ++t) squares[t] = differences[t].squaredNorm();
+    return std::max(0.0, RobustVariance(squares, kMedianChiSquare3) - g.sum() / 3.0);
+  }
+  Eigen::Vector3d s2;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d direction = principal.eigenvectors().col(i);
+    for (size_t t = 0; t < differences.size(); ++t) {
+      squares[t] = std::pow(direction.dot(differences[t]), 2);
+    }
+    s2[i] = RobustVariance(squares, kMedianChiSquare1);
+  }
+  // s_i² = m² + α·g_i by least squares, m² >= 0, α in [0, 1], weighted by the inverse variance
+  // of each s_i² (∝ its expected value squared: the observed one first, then the fit's).
+  double motion = 0.0, alpha = 1.0;
+  for (int pass = 0; pass < 4; ++pass) {
+    Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
+    Eigen::Vector2d right = Eigen::Vector2d::Zero();
+    Eigen::Vector3d weights;
+    for (int i = 0; i < 3; ++i) {
+      const double expected = pass == 0 ? s2[i] : motion + alpha * g[i];
+      weights[i] = 1.0 / std::pow(std::max(expected, 1e-300), 2);
+      const Eigen::Vector2d row(1.0, g[i]);
+      normal += weights[i] * row * row.transpose();
+      right += weights[i] * s2[i] * row;
+    }
+    alpha = std::clamp(normal.ldlt().solve(right)[1], 0.0, 1.0);
+    motion = std::max(0.0, weights.dot(s2 - alpha * g) / weights.sum());
+  }
+  return motion;
+}
+
+// σ_k = max(σ_k, m·unit) on each axis; unchanged when m² < 0 (too few spans).
+void RaiseSigmas(double motion_variance, double unit, std::array<double, 3>* sigmas) {
+  if (motion_variance < 0.0) return;
+  const double motion = std::sqrt(motion_variance) * unit;
   for (double& sigma : *sigmas) sigma = std::max(sigma, motion);
 }
 
@@ -67,8 +107,9 @@ WindowProblemOptions AdaptedPriorOptions(const WindowProblemOptions& options,
   for (const Eigen::Isometry3d& pose : per_frame) centres.push_back(pose.translation());
   const int translation_order =
       options.translation_model == MotionModel::kConstantAcceleration ? 3 : 2;
-  RaiseSigmas(DifferenceVariance(centres, translation_order), translation_order,
-              noise.translation_mm2, 1.0, &adapted.translation_sigma_mm);
+  RaiseSigmas(MotionVariance(Differences(centres, translation_order), noise.translation_mm2,
+                             translation_order),
+              1.0, &adapted.translation_sigma_mm);
   // Rotation: the body angular velocity ω_t = Log(R_tᵀR_{t+1}) is the first difference.
   std::vector<Eigen::Vector3d> velocities;
   for (size_t t = 0; t + 1 < per_frame.size(); ++t) {
@@ -80,8 +121,9 @@ WindowProblemOptions AdaptedPriorOptions(const WindowProblemOptions& options,
   std::vector<Eigen::Vector3d> angles = {Eigen::Vector3d::Zero()};
   for (const Eigen::Vector3d& w : velocities) angles.push_back(angles.back() + w);
   const int rotation_order = options.rotation_model == MotionModel::kConstantAcceleration ? 3 : 2;
-  RaiseSigmas(DifferenceVariance(angles, rotation_order), rotation_order, noise.rotation_rad2,
-              180.0 / kPi, &adapted.rotation_sigma_deg);
+  RaiseSigmas(
+      MotionVariance(Differences(angles, rotation_order), noise.rotation_rad2, rotation_order),
+      180.0 / kPi, &adapted.rotation_sigma_deg);
   return adapted;
 }
 
@@ -339,8 +381,11 @@ std::optional<PerFrameNoise> WindowSmoother::PredictedNoise(int first, int end) 
     if (views.empty() || views.front().edge_posterior == nullptr) continue;
     const Matrix6d& u = views.front().edge_posterior->sqrt_information;
     const Matrix6d covariance = (u.transpose() * u).inverse();
-    noise.translation_mm2 += covariance.topLeftCorner<3, 3>().trace() / 3.0;
-    noise.rotation_rad2 += covariance.bottomRightCorner<3, 3>().trace() / 3.0;
+    // The tangent (ρ, φ) is in the object-centred frame (se3_manifold.h): the centre moves by
+    // R·ρ in rig axes; φ is the body rotation the prior's angular velocities are taken in.
+    const Eigen::Matrix3d rotation = per_frame_poses_[t].linear();
+    noise.translation_mm2 += rotation * covariance.topLeftCorner<3, 3>() * rotation.transpose();
+    noise.rotation_rad2 += covariance.bottomRightCorner<3, 3>();
     ++frames;
   }
   if (frames == 0) return std::nullopt;

@@ -66,7 +66,8 @@ TEST(WindowProblemOptionsTest, ContextFramesAndCauchyScales) {
 // per axis and whose body angular velocity changes by steps of sd `spin_change_deg`, observed
 // with white noise of sd `noise_mm` / `noise_deg` per axis.
 std::vector<Eigen::Isometry3d> RandomMotion(int frames, double jerk_mm, double spin_change_deg,
-                                            double noise_mm, double noise_deg, unsigned seed) {
+                                            const Eigen::Vector3d& noise_mm, double noise_deg,
+                                            unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> gaussian(0.0, 1.0);
   auto draw = [&](double sd) {
@@ -80,7 +81,7 @@ std::vector<Eigen::Isometry3d> RandomMotion(int frames, double jerk_mm, double s
   for (int t = 0; t < frames; ++t) {
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.linear() = rotation * ExpSO3(draw(noise_deg * kRad));
-    pose.translation() = centre + draw(noise_mm);
+    pose.translation() = centre + draw(1.0).cwiseProduct(noise_mm);
     observed.push_back(pose);
     acceleration += draw(jerk_mm);
     velocity += acceleration;
@@ -90,12 +91,18 @@ std::vector<Eigen::Isometry3d> RandomMotion(int frames, double jerk_mm, double s
   }
   return observed;
 }
+std::vector<Eigen::Isometry3d> RandomMotion(int frames, double jerk_mm, double spin_change_deg,
+                                            double noise_mm, double noise_deg, unsigned seed) {
+  return RandomMotion(frames, jerk_mm, spin_change_deg, Eigen::Vector3d::Constant(noise_mm),
+                      noise_deg, seed);
+}
 
 // Empirical Bayes: the motion's own change per frame, the noise's share removed, raises the
 // prior σ; a smooth motion keeps the configured floor, and one lost frame does not move it.
 TEST(AdaptedPriorOptionsTest, RaisesSigmaToTheMotionAndKeepsTheFloorOnSmoothMotion) {
   const WindowProblemOptions options;  // σ 0.1 mm/frame³ and 0.1°/frame²
-  const PerFrameNoise noise{0.03 * 0.03, std::pow(0.05 * kPi / 180.0, 2)};
+  const PerFrameNoise noise{0.03 * 0.03 * Eigen::Matrix3d::Identity(),
+                            std::pow(0.05 * kPi / 180.0, 2) * Eigen::Matrix3d::Identity()};
   // Smooth (the true changes 0.01, well below the floor), noisy as predicted: the floor stays.
   const WindowProblemOptions smooth =
       AdaptedPriorOptions(options, RandomMotion(40, 0.01, 0.01, 0.03, 0.05, 1), noise);
@@ -121,6 +128,38 @@ TEST(AdaptedPriorOptionsTest, RaisesSigmaToTheMotionAndKeepsTheFloorOnSmoothMoti
   // Too few frames for five spans: unchanged.
   const std::vector<Eigen::Isometry3d> short_span(fast.begin(), fast.begin() + 6);
   EXPECT_DOUBLE_EQ(AdaptedPriorOptions(options, short_span, noise).translation_sigma_mm[0], 0.1);
+}
+
+// One camera: its depth noise (rig z here, 1.5 mm) is 50 times its lateral noise, and its edge
+// posteriors predict three times the noise the poses show from frame to frame (the slow part of
+// their error does not change between frames). The motion is read where the noise is small,
+// with the noise's fast share fitted where it is large: over 20 random motions σ follows a jerk
+// of 0.5 mm/frame³ on average (single draws spread by about ±20 %), and smooth motions keep
+// about the floor. The same predicted noise averaged over the axes, as it is for two cameras,
+// hides the motion under the depth's noise: the prior would smooth it away.
+TEST(AdaptedPriorOptionsTest, ReadsTheMotionBesideOneCamerasDepthNoise) {
+  const WindowProblemOptions options;  // σ 0.1 mm/frame³
+  const Eigen::Vector3d noise_mm(0.03, 0.03, 1.5);
+  PerFrameNoise predicted;
+  predicted.translation_mm2 = 3.0 * Eigen::Matrix3d(noise_mm.cwiseAbs2().asDiagonal());
+  predicted.rotation_rad2 = std::pow(0.05 * kPi / 180.0, 2) * Eigen::Matrix3d::Identity();
+  PerFrameNoise averaged = predicted;
+  averaged.translation_mm2 = predicted.translation_mm2.trace() / 3.0 * Eigen::Matrix3d::Identity();
+  constexpr int kMotions = 20;
+  double fast = 0.0, smooth = 0.0, fast_averaged = 0.0;
+  for (unsigned seed = 1; seed <= kMotions; ++seed) {
+    const std::vector<Eigen::Isometry3d> moving = RandomMotion(40, 0.5, 0.3, noise_mm, 0.05, seed);
+    fast += AdaptedPriorOptions(options, moving, predicted).translation_sigma_mm[0] / kMotions;
+    fast_averaged +=
+        AdaptedPriorOptions(options, moving, averaged).translation_sigma_mm[0] / kMotions;
+    smooth +=
+        AdaptedPriorOptions(options, RandomMotion(40, 0.01, 0.01, noise_mm, 0.05, seed), predicted)
+            .translation_sigma_mm[0] /
+        kMotions;
+  }
+  EXPECT_NEAR(fast, 0.5, 0.1);
+  EXPECT_LT(smooth, 0.15);
+  EXPECT_DOUBLE_EQ(fast_averaged, 0.1);
 }
 
 class WindowSmootherTest : public ::testing::TestWithParam<MotionModel> {};

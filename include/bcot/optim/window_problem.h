@@ -164,20 +164,31 @@ struct WindowProblemOptions {
   Status Validate() const;
 };
 
-// Per-axis variances of the per-frame poses' noise (their edge posteriors' prediction):
-// translation of the object centre (mm²) and rotation (rad²).
+// Covariances of the per-frame poses' noise (their edge posteriors' prediction, averaged over a
+// window): the object centre's translation in rig axes (mm²) and the rotation in the object's
+// frame (rad², the frame of the body angular velocities the prior differences).
 struct PerFrameNoise {
-  double translation_mm2 = 0.0;
-  double rotation_rad2 = 0.0;
+  Eigen::Matrix3d translation_mm2 = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d rotation_rad2 = Eigen::Matrix3d::Zero();
 };
 
 // `options` with each part's prior σ raised to what the motion of `per_frame` (consecutive
-// per-frame poses rig_from_objcentre, the window and its context) shows: the part's modelled
+// per-frame poses rig_from_objcentre, the window and its context) shows. The part's modelled
 // quantity (change per frame of velocity or acceleration, window_problem.h) is differenced from
-// the poses, its per-axis variance taken robustly (median of ‖d‖²/3 over the spans ÷ 0.789, the
-// median of χ²₃/3) and the noise's share removed (a k-th difference of white noise of variance
-// σ_n² has variance c·σ_n², c = 6 for second and 20 for third differences):
-//   σ² = max(σ_configured², s² − c·σ_n²)   per axis.
+// the poses: a k-th difference d_t has covariance m²·I + c·Σ, m² the motion's variance per axis
+// (the prior's model: the same on every axis) and Σ the covariance of the noise that changes
+// from frame to frame (c = 6 for second and 20 for third differences of white noise). Σ is
+// taken from `noise` (the edge posteriors' prediction, Σ_n), in one of two ways:
+// - Σ_n about isotropic (largest eigenvalue < 10 × the smallest: two or more cameras): Σ = Σ_n
+//   and m² = median ‖d_t‖² / 2.367 − c·tr(Σ_n)/3 (2.367 the median of χ²₃).
+// - Σ_n strongly anisotropic (one camera: its depth): Σ = α·Σ_n, α in [0, 1] the share of the
+//   predicted noise that changes between frames (the slow part of a single camera's depth error
+//   does not show in differences, and its posterior's prediction was calibrated on two
+//   cameras). In each principal direction e_i of Σ_n (eigenvalue λ_i) the robust variance s_i²
+//   of e_iᵀd_t (median of the squares ÷ 0.455, the median of χ²₁) is m² + α·c·λ_i; m² >= 0 and
+//   α are fitted to the three by weighted least squares. The directions of large noise give α,
+//   the others show the motion the noise would otherwise hide.
+//   σ² = max(σ_configured², m²)   on every axis.
 // Fewer than 5 spans: `options` unchanged.
 WindowProblemOptions AdaptedPriorOptions(const WindowProblemOptions& options,
                                          const std::vector<Eigen::Isometry3d>& per_frame,
