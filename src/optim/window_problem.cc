@@ -58,8 +58,22 @@ double MotionVariance(const std::vector<Eigen::Vector3d>& differences, const Eig
   const Eigen::Vector3d g = noise_factor * principal.eigenvalues().cwiseMax(0.0);
   std::vector<double> squares(differences.size());
   if (!(g.maxCoeff() >= kSeparableNoiseRatio * g.minCoeff()) || !(g.minCoeff() > 0.0)) {
+    // About isotropic: the noise's changing share is told from the motion by how the variance
+    // grows with one more difference: ×2 for the motion (a difference of white changes),
+    // 20/6 (k = 2) or 70/20 (k = 3) for white noise. With D_k = m² + c_k·a and D_{k+1} = 2m² +
+    // c_{k+1}·a, a = (D_{k+1} − 2·D_k) / (c_{k+1} − 2·c_k), kept within [0, the prediction].
     for (size_t t = 0; t < differences.size(); ++t) squares[t] = differences[t].squaredNorm();
-    return std::max(0.0, RobustVariance(squares, kMedianChiSquare3) - g.sum() / 3.0);
+    const double variance = RobustVariance(squares, kMedianChiSquare3);
+    const double predicted = g.sum() / 3.0 / noise_factor;  // per axis
+    squares.resize(differences.size() - 1);
+    for (size_t t = 0; t + 1 < differences.size(); ++t) {
+      squares[t] = (differences[t + 1] - differences[t]).squaredNorm();
+    }
+    const double next_variance = RobustVariance(squares, kMedianChiSquare3);
+    const double next_factor = k == 2 ? 20.0 : 70.0;
+    const double white = std::clamp(
+        (next_variance - 2.0 * variance) / (next_factor - 2.0 * noise_factor), 0.0, predicted);
+    return std::max(0.0, variance - noise_factor * white);
   }
   Eigen::Vector3d s2;
   for (int i = 0; i < 3; ++i) {

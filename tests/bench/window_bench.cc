@@ -8,7 +8,9 @@
 // velocity step at frame K; the mean error over frames K−1..K+1 is then printed too.
 // Each --variant LABEL:key=value[,key=value...] (window.* keys without the section, e.g.
 // `q:robust_translation_mm=0`) adds a row from a further window with those options, run on the same
-// per-frame solves (AnnotateFrameObserver), so settings compare without re-solving.
+// per-frame solves (AnnotateFrameObserver), so settings compare without re-solving; the prior σ
+// each of its windows ran with (raised by window.adaptive_prior) goes to stderr. A variant that
+// changes nothing (e.g. `same:adaptive_prior=true`) shows them for the config's own window.
 //
 // Usage: window_bench --config configs/annotate.yaml --sequence DIR[:K] [--sequence ...]
 //          [--set section.key=value]... [--variant LABEL:key=value,...]...
@@ -263,6 +265,14 @@ int Run(int argc, char** argv) {
         poses.push_back(pose * objcentre_from_template);
       }
       print(variants[k].label, poses);
+      // The prior σ each of the variant's windows ran with (raised by window.adaptive_prior).
+      std::string sigmas;
+      for (const WindowSummary& window : smoothers[k].windows()) {
+        sigmas += fmt::format(" [{}, {}) {:.3f} mm {:.3f}°", window.first, window.end,
+                              window.translation_sigma_mm, window.rotation_sigma_deg);
+      }
+      std::fprintf(stderr, "%s %s: prior σ per window:%s\n", name.c_str(),
+                   variants[k].label.c_str(), sigmas.c_str());
     }
     std::fprintf(stderr, "%s: %zu frames, %d failed, %.1f s (per-frame solves + window)\n",
                  dir.c_str(), annotation->frames.size(), annotation->failed_frames, seconds);

@@ -179,8 +179,13 @@ struct PerFrameNoise {
 // (the prior's model: the same on every axis) and Σ the covariance of the noise that changes
 // from frame to frame (c = 6 for second and 20 for third differences of white noise). Σ is
 // taken from `noise` (the edge posteriors' prediction, Σ_n), in one of two ways:
-// - Σ_n about isotropic (largest eigenvalue < 10 × the smallest: two or more cameras): Σ = Σ_n
-//   and m² = median ‖d_t‖² / 2.367 − c·tr(Σ_n)/3 (2.367 the median of χ²₃).
+// - Σ_n about isotropic (largest eigenvalue < 10 × the smallest: two or more cameras): per axis,
+//   with D_k = median ‖d_t‖² / 2.367 (2.367 the median of χ²₃) and D_{k+1} the same of the
+//   (k+1)-th differences, D_k = m² + c_k·a and D_{k+1} = 2·m² + c_{k+1}·a (a difference of the
+//   motion's white changes doubles their variance; white noise's grows from 6 to 20, or from 20
+//   to 70). That gives the white noise's variance a, kept within [0, tr(Σ_n)/3]: the prediction
+//   also holds the error's slow part, which differences do not see (on the Cycles scenes it
+//   hid the rotation's motion entirely). m² = D_k − c_k·a.
 // - Σ_n strongly anisotropic (one camera: its depth): Σ = α·Σ_n, α in [0, 1] the share of the
 //   predicted noise that changes between frames (the slow part of a single camera's depth error
 //   does not show in differences, and its posterior's prediction was calibrated on two
