@@ -42,40 +42,45 @@ double RobustVariance(std::vector<double> squares, double median) {
   return squares[mid] / median;
 }
 
-// The motion's variance m² per axis in its k-th differences `differences`, with the noise's
-// share removed (header of AdaptedPriorOptions); −1 when there are fewer than 5 differences.
-double MotionVariance(const std::vector<Eigen::Vector3d>& differences, const Eigen::Matrix3d& noise,
-                      int k) {
-  if (differences.size() < 5) return -1.0;
-  // Medians of χ²₁ and χ²₃ (the latter as 3 × 0.789, the median of χ²₃/3).
-  constexpr double kMedianChiSquare1 = 0.4549, kMedianChiSquare3 = 3.0 * 0.789;
-  // Below this ratio of the largest to the smallest noise variance, the noise's scale and the
-  // motion cannot be told apart from a window's spans (each s_i², a median of some 35 squares,
-  // is known to about ±40 %).
-  constexpr double kSeparableNoiseRatio = 10.0;
-  const double noise_factor = k == 2 ? 6.0 : 20.0;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(noise);
-  const Eigen::Vector3d g = noise_factor * principal.eigenvalues().cwiseMax(0.0);
-  std::vector<double> squares(differences.size());
-  if (!(g.maxCoeff() >= kSeparableNoiseRatio * g.minCoeff()) || !(g.minCoeff() > 0.0)) {
-    // About isotropic: the noise's changing share is told from the motion by how the variance
-    // grows with one more difference: ×2 for the motion (a difference of white changes),
-    // 20/6 (k = 2) or 70/20 (k = 3) for white noise. With D_k = m² + c_k·a and D_{k+1} = 2m² +
-    // c_{k+1}·a, a = (D_{k+1} − 2·D_k) / (c_{k+1} − 2·c_k), kept within [0, the prediction].
-    for (size_t t = 0; t < differences.size(); ++t) squares[t] = differences[t].squaredNorm();
-    const double variance = RobustVariance(squares, kMedianChiSquare3);
-    const double predicted = g.sum() / 3.0 / noise_factor;  // per axis
-    squares.resize(differences.size() - 1);
-    for (size_t t = 0; t + 1 < differences.size(); ++t) {
-      squares[t] = (differences[t + 1] - differences[t]).squaredNorm();
-    }
-    const double next_variance = RobustVariance(squares, kMedianChiSquare3);
-    const double next_factor = k == 2 ? 20.0 : 70.0;
-    const double white = std::clamp(
-        (next_variance - 2.0 * variance) / (next_factor - 2.0 * noise_factor), 0.0, predicted);
-    return std::max(0.0, variance - noise_factor * white);
+// Medians of χ²₁ and χ²₃ (the latter as 3 × 0.789, the median of χ²₃/3).
+constexpr double kMedianChiSquare1 = 0.4549;
+constexpr double kMedianChiSquare3 = 3.0 * 0.789;
+
+// The variance of the k-th difference of unit white noise: 1 + 4 + 1 = 6 (k = 2), 1 + 9 + 9 +
+// 1 = 20 (k = 3), 1 + 16 + 36 + 16 + 1 = 70 (k = 4).
+double WhiteNoiseFactor(int k) { return k == 2 ? 6.0 : k == 3 ? 20.0 : 70.0; }
+
+// m² for about isotropic noise of predicted variance `predicted` per axis (header of
+// AdaptedPriorOptions): the white noise's variance a is told from the motion by how the
+// differences' variance grows with one more difference, ×2 for the motion's white changes and
+// c_{k+1}/c_k for white noise. With D_k = m² + c_k·a and D_{k+1} = 2m² + c_{k+1}·a,
+// a = (D_{k+1} − 2·D_k) / (c_{k+1} − 2·c_k), kept within [0, predicted].
+double IsotropicMotionVariance(const std::vector<Eigen::Vector3d>& differences, double predicted,
+                               int k) {
+  std::vector<double> squares;
+  for (const Eigen::Vector3d& d : differences) squares.push_back(d.squaredNorm());
+  const double variance = RobustVariance(squares, kMedianChiSquare3);
+  squares.clear();
+  for (size_t t = 0; t + 1 < differences.size(); ++t) {
+    squares.push_back((differences[t + 1] - differences[t]).squaredNorm());
   }
+  const double next_variance = RobustVariance(squares, kMedianChiSquare3);
+  const double white = std::clamp(
+      (next_variance - 2.0 * variance) / (WhiteNoiseFactor(k + 1) - 2.0 * WhiteNoiseFactor(k)), 0.0,
+      predicted);
+  return std::max(0.0, variance - WhiteNoiseFactor(k) * white);
+}
+
+// m² for strongly anisotropic predicted noise (`principal`: its eigen-decomposition; header of
+// AdaptedPriorOptions): per principal direction s_i² = m² + α·c_k·λ_i, fitted by least squares
+// with m² >= 0 and α in [0, 1], each s_i² weighted by its inverse variance (∝ its expected value
+// squared: the observed one first, then the fit's).
+double AnisotropicMotionVariance(const std::vector<Eigen::Vector3d>& differences,
+                                 const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>& principal,
+                                 int k) {
+  const Eigen::Vector3d g = WhiteNoiseFactor(k) * principal.eigenvalues().cwiseMax(0.0);
   Eigen::Vector3d s2;
+  std::vector<double> squares(differences.size());
   for (int i = 0; i < 3; ++i) {
     const Eigen::Vector3d direction = principal.eigenvectors().col(i);
     for (size_t t = 0; t < differences.size(); ++t) {
@@ -83,16 +88,16 @@ double MotionVariance(const std::vector<Eigen::Vector3d>& differences, const Eig
     }
     s2[i] = RobustVariance(squares, kMedianChiSquare1);
   }
-  // s_i² = m² + α·g_i by least squares, m² >= 0, α in [0, 1], weighted by the inverse variance
-  // of each s_i² (∝ its expected value squared: the observed one first, then the fit's).
+  const double smallest_expected = 1e-6 * g.maxCoeff();  // keeps every weight finite
   double motion = 0.0, alpha = 1.0;
   for (int pass = 0; pass < 4; ++pass) {
     Eigen::Matrix2d normal = Eigen::Matrix2d::Zero();
     Eigen::Vector2d right = Eigen::Vector2d::Zero();
     Eigen::Vector3d weights;
     for (int i = 0; i < 3; ++i) {
-      const double expected = pass == 0 ? s2[i] : motion + alpha * g[i];
-      weights[i] = 1.0 / std::pow(std::max(expected, 1e-300), 2);
+      const double expected =
+          std::max(pass == 0 ? s2[i] : motion + alpha * g[i], smallest_expected);
+      weights[i] = 1.0 / (expected * expected);
       const Eigen::Vector2d row(1.0, g[i]);
       normal += weights[i] * row * row.transpose();
       right += weights[i] * s2[i] * row;
@@ -101,6 +106,25 @@ double MotionVariance(const std::vector<Eigen::Vector3d>& differences, const Eig
     motion = std::max(0.0, weights.dot(s2 - alpha * g) / weights.sum());
   }
   return motion;
+}
+
+// The motion's variance m² per axis in its k-th differences `differences`, with the share of
+// the predicted noise `noise` that changes between frames removed (header of
+// AdaptedPriorOptions); −1 when there are fewer than 5 differences.
+double MotionVariance(const std::vector<Eigen::Vector3d>& differences, const Eigen::Matrix3d& noise,
+                      int k) {
+  if (differences.size() < 5) return -1.0;
+  // Below this ratio of the largest to the smallest noise variance, the noise's scale and the
+  // motion cannot be told apart along its directions from a window's spans (each s_i², a
+  // median of some 35 squares, is known to about ±40 %).
+  constexpr double kSeparableNoiseRatio = 10.0;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(noise);
+  const Eigen::Vector3d eigenvalues = principal.eigenvalues().cwiseMax(0.0);
+  if (eigenvalues.minCoeff() > 0.0 &&
+      eigenvalues.maxCoeff() >= kSeparableNoiseRatio * eigenvalues.minCoeff()) {
+    return AnisotropicMotionVariance(differences, principal, k);
+  }
+  return IsotropicMotionVariance(differences, eigenvalues.sum() / 3.0, k);
 }
 
 // σ_k = max(σ_k, m·unit) on each axis; unchanged when m² < 0 (too few spans).
