@@ -23,15 +23,15 @@
 namespace bcot {
 namespace {
 
-// The k-th differences (k = 2 or 3) of `values`.
-std::vector<Eigen::Vector3d> Differences(const std::vector<Eigen::Vector3d>& values, int k) {
+// The first differences of `values`; applied k times, the k-th.
+std::vector<Eigen::Vector3d> Differences(const std::vector<Eigen::Vector3d>& values) {
   std::vector<Eigen::Vector3d> differences;
-  for (size_t t = 0; t + k < values.size(); ++t) {
-    differences.push_back(k == 2 ? Eigen::Vector3d(values[t + 2] - 2.0 * values[t + 1] + values[t])
-                                 : Eigen::Vector3d(values[t + 3] - 3.0 * values[t + 2] +
-                                                   3.0 * values[t + 1] - values[t]));
-  }
+  for (size_t t = 0; t + 1 < values.size(); ++t) differences.push_back(values[t + 1] - values[t]);
   return differences;
+}
+std::vector<Eigen::Vector3d> Differences(std::vector<Eigen::Vector3d> values, int k) {
+  for (int order = 0; order < k; ++order) values = Differences(values);
+  return values;
 }
 
 // Robust variance of `values`' squares' distribution: the median of the squares ÷ `median`
@@ -61,9 +61,7 @@ double IsotropicMotionVariance(const std::vector<Eigen::Vector3d>& differences, 
   for (const Eigen::Vector3d& d : differences) squares.push_back(d.squaredNorm());
   const double variance = RobustVariance(squares, kMedianChiSquare3);
   squares.clear();
-  for (size_t t = 0; t + 1 < differences.size(); ++t) {
-    squares.push_back((differences[t + 1] - differences[t]).squaredNorm());
-  }
+  for (const Eigen::Vector3d& d : Differences(differences)) squares.push_back(d.squaredNorm());
   const double next_variance = RobustVariance(squares, kMedianChiSquare3);
   const double white = std::clamp(
       (next_variance - 2.0 * variance) / (WhiteNoiseFactor(k + 1) - 2.0 * WhiteNoiseFactor(k)), 0.0,
