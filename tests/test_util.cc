@@ -100,6 +100,15 @@ void MakeTinyAnnotatedSequence(const std::string& sequence_dir, int num_frames,
   BCOT_CHECK((annotate == 0 || annotate == kExitRejected) && "bcot annotate failed");
 }
 
+void ExpectErrorNaming(const Status& status, StatusCode code,
+                       std::initializer_list<std::string> parts) {
+  EXPECT_EQ(status.code(), code) << status.message();
+  for (const std::string& part : parts) {
+    EXPECT_NE(status.message().find(part), std::string::npos)
+        << "missing '" << part << "' in: " << status.message();
+  }
+}
+
 double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return RotationDistanceDeg(a.linear(), b.linear());
 }

@@ -4,10 +4,12 @@
 #include <gmock/gmock.h>
 
 #include <Eigen/Geometry>
+#include <initializer_list>
 #include <random>
 #include <string>
 
 #include "bcot/core/se3.h"
+#include "bcot/core/status.h"
 
 namespace bcot::test {
 
@@ -64,6 +66,11 @@ inline Eigen::Vector3d RandomUnitVector(std::mt19937& rng) {
   std::normal_distribution<double> normal;
   return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
 }
+
+// EXPECTs `status` to have `code` and a message that contains each of `parts` (a missing part
+// is reported with the whole message).
+void ExpectErrorNaming(const Status& status, StatusCode code,
+                       std::initializer_list<std::string> parts);
 
 // Rotation (deg) and translation (mm) distance between two poses.
 double RotationErrorDeg(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);

@@ -42,9 +42,8 @@ TEST(InitializerTest, MalformedClicksNameTheFlagAndTheText) {
                                  "cam0:a,2", "cam0:1;2", "cam0:nan,2", "cam0:inf,2"}) {
     const StatusOr<ImageClick> click = ParseImageClick(text);
     ASSERT_FALSE(click.ok()) << text;
-    EXPECT_EQ(click.status().code(), StatusCode::kInvalidConfig);
-    EXPECT_THAT(click.status().message(), HasSubstr("--click '" + text + "'"));
-    EXPECT_THAT(click.status().message(), HasSubstr("expected CAM:X,Y"));
+    test::ExpectErrorNaming(click.status(), StatusCode::kInvalidConfig,
+                            {"--click '" + text + "'", "expected CAM:X,Y"});
   }
 }
 
@@ -94,10 +93,8 @@ TEST(InitializerTest, ExistingPoseFilesAreRefusedUnlessOverwrite) {
   outputs.num_candidates = 1;
   EXPECT_TRUE(CheckInitOutputs(outputs).ok());
   test::WriteText(dir.File("init_pose.cand1.txt"), "x\n");
-  const Status refused = CheckInitOutputs(outputs);
-  EXPECT_EQ(refused.code(), StatusCode::kInvalidConfig);
-  EXPECT_THAT(refused.message(), HasSubstr(dir.File("init_pose.cand1.txt") + " exists"));
-  EXPECT_THAT(refused.message(), HasSubstr("--overwrite"));
+  test::ExpectErrorNaming(CheckInitOutputs(outputs), StatusCode::kInvalidConfig,
+                          {dir.File("init_pose.cand1.txt") + " exists", "--overwrite"});
   outputs.overwrite = true;
   EXPECT_TRUE(CheckInitOutputs(outputs).ok());
 }
@@ -108,11 +105,9 @@ TEST(InitializerTest, OptionsRulesNameTheKey) {
   options.search.grid_rotations = 10;
   options.search.same_iou = 0.0;
   options.search.max_extent_fraction = 0.01;
-  const Status status = options.Validate();
-  EXPECT_EQ(status.code(), StatusCode::kInvalidConfig);
-  EXPECT_THAT(status.message(), HasSubstr("init.grid_rotations = 10"));
-  EXPECT_THAT(status.message(), HasSubstr("init.same_iou = 0"));
-  EXPECT_THAT(status.message(), HasSubstr("init.max_extent_fraction = 0.01"));
+  test::ExpectErrorNaming(
+      options.Validate(), StatusCode::kInvalidConfig,
+      {"init.grid_rotations = 10", "init.same_iou = 0", "init.max_extent_fraction = 0.01"});
   EXPECT_FALSE(options.search.Validate().ok());
 
   const StatusOr<InitOptions> read = ReadInitOptions(

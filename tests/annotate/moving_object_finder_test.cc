@@ -17,8 +17,6 @@
 namespace bcot {
 namespace {
 
-using ::testing::HasSubstr;
-
 constexpr int kWidth = 640;
 constexpr int kHeight = 480;
 constexpr double kRadius = 40.0;
@@ -102,17 +100,14 @@ TEST(MovingObjectFinderTest, NeedsThreeFramesAndValidOptions) {
   const StatusOr<std::vector<MovingObjectView>> views =
       FindMovingObject(two, 0, MovingObjectOptions());
   ASSERT_FALSE(views.ok());
-  EXPECT_EQ(views.status().code(), StatusCode::kInvalidInput);
-  EXPECT_THAT(views.status().message(), HasSubstr("at least 3 frames"));
-  EXPECT_THAT(views.status().message(), HasSubstr("--click"));
+  test::ExpectErrorNaming(views.status(), StatusCode::kInvalidInput,
+                          {"at least 3 frames", "--click"});
 
   MovingObjectOptions options;
   options.frames = 2;
   options.min_area_fraction = 1.0;
-  const Status status = options.Validate();
-  EXPECT_EQ(status.code(), StatusCode::kInvalidConfig);
-  EXPECT_THAT(status.message(), HasSubstr("init.motion_frames = 2"));
-  EXPECT_THAT(status.message(), HasSubstr("init.motion_min_area_fraction = 1"));
+  test::ExpectErrorNaming(options.Validate(), StatusCode::kInvalidConfig,
+                          {"init.motion_frames = 2", "init.motion_min_area_fraction = 1"});
 }
 
 }  // namespace

@@ -23,6 +23,12 @@ YAML::Node Parse(const std::string& text) {
   return node.ok() ? *node : YAML::Node();
 }
 
+// The `region` section of `text`, read as cfg.yaml.
+YamlMap RegionMap(const std::string& text) {
+  const YAML::Node root = Parse(text);
+  return YamlMap(root["region"], "cfg.yaml", "region");
+}
+
 // Line numbers in the tests below are 1-based lines of this text.
 constexpr char kConfig[] =
     "name: demo\n"              // 1
@@ -156,7 +162,7 @@ TEST(YamlMapTest, ReadsEveryType) {
 }
 
 TEST(YamlMapTest, SequenceElementErrorPointsAtTheElementsLine) {
-  YamlMap region(Parse(kConfig)["region"], "cfg.yaml", "region");
+  YamlMap region = RegionMap(kConfig);
   std::vector<double> k;
   const Status status = region.Get("K", &k);
   ASSERT_FALSE(status.ok());
@@ -165,7 +171,7 @@ TEST(YamlMapTest, SequenceElementErrorPointsAtTheElementsLine) {
 }
 
 TEST(YamlMapTest, MissingRequiredKeyNamesMapLineAndPath) {
-  YamlMap region(Parse(kConfig)["region"], "cfg.yaml", "region");
+  YamlMap region = RegionMap(kConfig);
   double value = 0.0;
   const Status status = region.Get("sigma", &value);
   ASSERT_FALSE(status.ok());
@@ -189,7 +195,7 @@ TEST(YamlMapTest, GetOptionalChoiceMapsNamesAndListsTheChoices) {
 }
 
 TEST(YamlMapTest, GetOptionalKeepsDefaultWhenAbsentAndParsesWhenPresent) {
-  YamlMap region(Parse(kConfig)["region"], "cfg.yaml", "region");
+  YamlMap region = RegionMap(kConfig);
   double sigma = 1.25;
   ASSERT_TRUE(region.GetOptional("sigma", &sigma).ok());
   EXPECT_EQ(sigma, 1.25);
@@ -271,12 +277,11 @@ TEST(YamlMapTest, FailedGetLeavesValueUntouched) {
 }
 
 TEST(YamlMapTest, UnknownKeyNamesLineKnownKeysAndSuggestion) {
-  const YAML::Node root = Parse(
+  YamlMap region = RegionMap(
       "region:\n"
       "  band_px: 12\n"
       "  scael: 0.5\n"
       "  zzz: 1\n");
-  YamlMap region(root["region"], "cfg.yaml", "region");
   int band_px = 0;
   double scale = 1.0;
   ASSERT_TRUE(region.Get("band_px", &band_px).ok());
@@ -326,12 +331,11 @@ TEST(YamlMapTest, GetFixedArrayWrongLength) {
 }
 
 TEST(YamlMapTest, DuplicateKeyIsAnErrorNamingBothLines) {
-  const YAML::Node root = Parse(
+  YamlMap region = RegionMap(
       "region:\n"
       "  band_px: 12\n"
       "  scale: 0.5\n"
       "  band_px: 14\n");
-  YamlMap region(root["region"], "cfg.yaml", "region");
   const Status check = region.Check();
   ASSERT_FALSE(check.ok());
   EXPECT_EQ(check.message(), "cfg.yaml:4: region.band_px: duplicate key (first at line 2)");
@@ -344,8 +348,7 @@ TEST(YamlMapTest, DuplicateKeyIsAnErrorNamingBothLines) {
 }
 
 TEST(YamlMapTest, NotAMappingIsAnError) {
-  const YAML::Node root = Parse("region: [1, 2]\nname: x\n");
-  YamlMap region(root["region"], "cfg.yaml", "region");
+  YamlMap region = RegionMap("region: [1, 2]\nname: x\n");
   const Status status = region.Check();
   ASSERT_FALSE(status.ok());
   EXPECT_EQ(status.message(),
@@ -366,8 +369,7 @@ TEST(YamlMapTest, NonScalarKeyIsAnError) {
 }
 
 TEST(YamlMapTest, EmptySectionReadsAsEmptyMap) {
-  const YAML::Node root = Parse("region:\nother: 1\n");
-  YamlMap region(root["region"], "cfg.yaml", "region");
+  YamlMap region = RegionMap("region:\nother: 1\n");
   EXPECT_TRUE(region.Check().ok());
   int band_px = 7;
   EXPECT_TRUE(region.GetOptional("band_px", &band_px).ok());
@@ -377,8 +379,7 @@ TEST(YamlMapTest, EmptySectionReadsAsEmptyMap) {
 
 TEST(YamlMapTest, MissingKeyInEmptySectionClaimsNoLine) {
   // yaml-cpp marks an empty value at the token after it (here line 3), which would mislead.
-  const YAML::Node root = Parse("region:\nother: 1\n");
-  YamlMap region(root["region"], "cfg.yaml", "region");
+  YamlMap region = RegionMap("region:\nother: 1\n");
   int band_px = 0;
   EXPECT_EQ(region.Get("band_px", &band_px).message(),
             "cfg.yaml: region.band_px: missing required key");

@@ -248,11 +248,8 @@ TEST(EvalOptionsTest, ValidateAndYaml) {
   options.layout = "ycb";
   options.reset_rotation_deg = 0;
   options.curve.steps = 0;
-  Status status = options.Validate();
-  EXPECT_EQ(status.code(), StatusCode::kInvalidConfig);
-  for (const char* text : {"layout = 'ycb'", "reset_rotation_deg = 0", "curve.steps = 0"}) {
-    EXPECT_THAT(status.message(), HasSubstr(text));
-  }
+  test::ExpectErrorNaming(options.Validate(), StatusCode::kInvalidConfig,
+                          {"layout = 'ycb'", "reset_rotation_deg = 0", "curve.steps = 0"});
   test::TempDir dir;
   test::WriteText(dir.File("eval.yaml"), "layout: rbot\ncurve:\n  steps: 50\n");
   StatusOr<EvalOptions> read = ReadEvalOptions(dir.File("eval.yaml"), {"rbot_variant=c_noisy"});
@@ -265,7 +262,7 @@ TEST(EvalOptionsTest, ValidateAndYaml) {
   ASSERT_TRUE(again.ok()) << again.status().message();
   EXPECT_EQ(FormatEvalOptions(*again), FormatEvalOptions(*read));
   test::WriteText(dir.File("bad.yaml"), "layout: bcot\ncurve:\n  step: 50\n");
-  status = ReadEvalOptions(dir.File("bad.yaml")).status();
+  const Status status = ReadEvalOptions(dir.File("bad.yaml")).status();
   EXPECT_EQ(status.code(), StatusCode::kInvalidConfig);
   EXPECT_THAT(status.message(), HasSubstr("bad.yaml:3"));
 }

@@ -129,10 +129,8 @@ TEST(MetricsTest, CurveOptionsValidateListsEveryViolation) {
   CurveOptions curve;
   curve.max_fraction_of_d = 0.0;
   curve.steps = 0;
-  const Status status = curve.Validate();
-  EXPECT_EQ(status.code(), StatusCode::kInvalidConfig);
-  EXPECT_THAT(status.message(), ::testing::HasSubstr("max_fraction_of_d = 0"));
-  EXPECT_THAT(status.message(), ::testing::HasSubstr("steps = 0"));
+  test::ExpectErrorNaming(curve.Validate(), StatusCode::kInvalidConfig,
+                          {"max_fraction_of_d = 0", "steps = 0"});
 }
 
 }  // namespace

@@ -25,6 +25,7 @@
 #include "bcot/render/mesh.h"
 #include "bcot/synth/synthesizer.h"
 #include "export/coverage_frames.h"
+#include "synth_scenes.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -40,20 +41,14 @@ constexpr int kFrames = 4;
 // distortion. The frames are replaced by the object's exact coverage (0..255), so an exported
 // image shows where the object is in the exported camera.
 void SynthesizeSequence(const std::string& out, bool distorted) {
-  SynthOptions options;
+  SynthOptions options = test::SmallBinocularSynthOptions(320, 256, kFrames);
   options.seed = 5;
-  options.cameras.width = 320;
-  options.cameras.height = 256;
-  options.cameras.arc_angles_deg = {90};
   options.cameras.hfov_deg = 70.0;
   options.cameras.distance_mm = 400.0;
   options.object.size_mm = 220.0;
   if (distorted) options.cameras.distortion = {-0.3, 0.1, 0.001, -0.001, 0.0};
-  options.motion.num_frames = kFrames;
-  options.distractors.count = 0;
   options.background.clutter_shapes = 0;
   options.render.object_samples_per_axis = 4;
-  options.render.background_samples_per_axis = 1;
   options.output.write_coverage = true;
   ASSERT_TRUE(Synthesize(options, out).ok());
   test::ReplaceFramesWithCoverage(out, kFrames);

@@ -56,13 +56,9 @@ TEST(CorrespondenceLineOptionsTest, ValidateListsEveryViolation) {
   options.amplitude = 0.5;
   options.max_sigma_px = 0.1;
   options.weight = -1.0;
-  const Status status = options.Validate();
-  ASSERT_EQ(status.code(), StatusCode::kInvalidConfig);
-  EXPECT_THAT(status.message(), HasSubstr("num_lines = 0"));
-  EXPECT_THAT(status.message(), HasSubstr("half_length_px = 0.5"));
-  EXPECT_THAT(status.message(), HasSubstr("amplitude = 0.5"));
-  EXPECT_THAT(status.message(), HasSubstr("max_sigma_px = 0.1"));
-  EXPECT_THAT(status.message(), HasSubstr("weight = -1"));
+  test::ExpectErrorNaming(options.Validate(), StatusCode::kInvalidConfig,
+                          {"num_lines = 0", "half_length_px = 0.5", "amplitude = 0.5",
+                           "max_sigma_px = 0.1", "weight = -1"});
 }
 
 TEST(FrameProblemOptionsTest, SparseEnergyNeedsAPositiveLineWeight) {

@@ -58,13 +58,9 @@ TEST(MultiViewTrackerOptionsTest, ValidateListsEveryViolation) {
   options.frame.rounds = 0;
   options.velocity_prediction = 1.5;
   options.color.bins_per_channel = 3;
-  const Status status = options.Validate();
-  ASSERT_EQ(status.code(), StatusCode::kInvalidConfig);
-  EXPECT_THAT(status.message(), HasSubstr("bootstrap_passes = 0"));
-  EXPECT_THAT(status.message(), HasSubstr("bootstrap_converged_mm = 0"));
-  EXPECT_THAT(status.message(), HasSubstr("rounds = 0"));
-  EXPECT_THAT(status.message(), HasSubstr("velocity_prediction = 1.5"));
-  EXPECT_THAT(status.message(), HasSubstr("bins_per_channel = 3"));
+  test::ExpectErrorNaming(options.Validate(), StatusCode::kInvalidConfig,
+                          {"bootstrap_passes = 0", "bootstrap_converged_mm = 0", "rounds = 0",
+                           "velocity_prediction = 1.5", "bins_per_channel = 3"});
 }
 
 // The acceptance test of the joint solver: a binocular frame (90° apart) recovered from a

@@ -52,13 +52,8 @@ TEST(RegionCostOptionsTest, ValidateListsEveryViolation) {
   options.heaviside_slope = -1.0;
   options.view_weight = -2.0;
   options.probability_floor = 0.5;
-  const Status status = options.Validate();
-  ASSERT_FALSE(status.ok());
-  EXPECT_EQ(status.code(), StatusCode::kInvalidConfig);
-  EXPECT_NE(status.message().find("heaviside_slope = -1"), std::string::npos) << status.message();
-  EXPECT_NE(status.message().find("view_weight = -2"), std::string::npos) << status.message();
-  EXPECT_NE(status.message().find("probability_floor = 0.5"), std::string::npos)
-      << status.message();
+  test::ExpectErrorNaming(options.Validate(), StatusCode::kInvalidConfig,
+                          {"heaviside_slope = -1", "view_weight = -2", "probability_floor = 0.5"});
 }
 
 TEST(SqrtLossTest, DerivativesMatchFiniteDifferences) {

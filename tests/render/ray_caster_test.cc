@@ -176,25 +176,19 @@ TEST(RenderOptionsTest, ListsEveryViolation) {
   render.roi = cv::Rect(0, 0, -4, 10);
   render.margin_px = -1;
   render.samples_per_axis = 0;
-  const Status status = render.Validate();
-  ASSERT_FALSE(status.ok());
-  EXPECT_EQ(status.code(), StatusCode::kInvalidConfig);
-  EXPECT_THAT(status.message(), HasSubstr("roi"));
-  EXPECT_THAT(status.message(), HasSubstr("margin_px = -1, must be >= 0"));
-  EXPECT_THAT(status.message(), HasSubstr("samples_per_axis = 0, must be in [1, 16]"));
+  test::ExpectErrorNaming(
+      render.Validate(), StatusCode::kInvalidConfig,
+      {"roi", "margin_px = -1, must be >= 0", "samples_per_axis = 0, must be in [1, 16]"});
 
   ContourOptions contour;
   contour.coarse_step_px = 0;
   contour.sample_spacing_px = -1.0;
   contour.precision_px = 0.0;
   contour.margin_px = -2;
-  const Status contour_status = contour.Validate();
-  ASSERT_FALSE(contour_status.ok());
-  EXPECT_EQ(contour_status.code(), StatusCode::kInvalidConfig);
-  EXPECT_THAT(contour_status.message(), HasSubstr("coarse_step_px = 0, must be >= 1"));
-  EXPECT_THAT(contour_status.message(), HasSubstr("sample_spacing_px = -1"));
-  EXPECT_THAT(contour_status.message(), HasSubstr("precision_px = 0, must be in [1e-6, 0.5]"));
-  EXPECT_THAT(contour_status.message(), HasSubstr("margin_px = -2, must be >= 0"));
+  test::ExpectErrorNaming(
+      contour.Validate(), StatusCode::kInvalidConfig,
+      {"coarse_step_px = 0, must be >= 1", "sample_spacing_px = -1",
+       "precision_px = 0, must be in [1e-6, 0.5]", "margin_px = -2, must be >= 0"});
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,12 +1,11 @@
 #include "bcot/review/review_options.h"
 
-#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "test_util.h"
 
 namespace bcot {
 namespace {
-
-using ::testing::HasSubstr;
 
 TEST(ReviewOptionsTest, DefaultsAreValidAndLoopbackOnly) {
   const ReviewOptions options;
@@ -19,12 +18,8 @@ TEST(ReviewOptionsTest, ValidateListsEveryViolation) {
   options.host = "";
   options.port = 70000;
   options.jpeg_quality = 0;
-  const Status status = options.Validate();
-  ASSERT_FALSE(status.ok());
-  EXPECT_EQ(status.code(), StatusCode::kInvalidConfig);
-  EXPECT_THAT(status.message(), HasSubstr("review.host"));
-  EXPECT_THAT(status.message(), HasSubstr("review.port = 70000"));
-  EXPECT_THAT(status.message(), HasSubstr("review.jpeg_quality = 0"));
+  test::ExpectErrorNaming(options.Validate(), StatusCode::kInvalidConfig,
+                          {"review.host", "review.port = 70000", "review.jpeg_quality = 0"});
 }
 
 TEST(ReviewOptionsTest, OnlyLoopbackAddressesAreLoopback) {

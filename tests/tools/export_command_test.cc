@@ -11,6 +11,7 @@
 #include "bcot/core/pose_io.h"
 #include "bcot/core/status.h"
 #include "bcot/synth/synthesizer.h"
+#include "synth_scenes.h"
 #include "test_util.h"
 
 namespace bcot {
@@ -24,14 +25,8 @@ std::string Bcot(const std::string& arguments) { return test::BcotBinary() + " "
 class ExportCommandTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    SynthOptions options;
-    options.cameras.width = 160;
-    options.cameras.height = 128;
-    options.cameras.arc_angles_deg = {90};
-    options.motion.num_frames = 3;
-    options.distractors.count = 0;
+    SynthOptions options = test::SmallBinocularSynthOptions(160, 128, 3);
     options.render.object_samples_per_axis = 1;
-    options.render.background_samples_per_axis = 1;
     ASSERT_TRUE(Synthesize(options, dir_.File("seq")).ok());
   }
   // `bcot export ANN --sequence seq --out OUT` and `extra`.
