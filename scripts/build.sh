@@ -6,7 +6,11 @@ cd "$(dirname "$0")/.."
 kind=${1:-release}
 case "$kind" in
   release) dir=build; flags=(-DCMAKE_BUILD_TYPE=Release -DBCOT_SANITIZE=OFF) ;;
-  asan) dir=build-asan; flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DBCOT_SANITIZE=ON -DBCOT_BUILD_BENCHMARKS=OFF) ;;
+  # -g1: line tables only, enough for the sanitizers' stack traces; full debug info made each
+  # object ~2.6× larger and its compile ~35 % slower (frame_problem_test.cc: 21.9 → 16.1 s).
+  asan) dir=build-asan; flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DBCOT_SANITIZE=ON -DBCOT_BUILD_BENCHMARKS=OFF
+                               "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG"
+                               "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG") ;;
   *) echo "usage: scripts/build.sh [release|asan]" >&2; exit 2 ;;
 esac
 jobs=$(nproc 2>/dev/null || echo 2)
