@@ -38,6 +38,9 @@ DEFAULTS = {
         "size_mm": 150.0,            # longest bounding-box side
         "material": "plastic",       # diffuse | plastic | glossy | metal | dark | bright
         "color_rgb": [200, 70, 45],  # sRGB 0..255 base colour
+        # Faces meeting at more than this angle (deg) keep a sharp edge (a machined part's
+        # creases); 180: every edge shaded smooth (interpolated normals), as for a curved object.
+        "smooth_angle_deg": 180.0,
     },
     "motion": {
         "amplitude_mm": [60.0, 60.0, 40.0],     # of the bbox centre about the target point
@@ -120,6 +123,9 @@ def load_spec(path, overrides=()):
     spec = deep_merge(DEFAULTS, raw, os.path.basename(path))
     for assignment in overrides:
         set_override(spec, assignment)
+    angle = spec["object"]["smooth_angle_deg"]
+    if not isinstance(angle, (int, float)) or not 0.0 < angle <= 180.0:
+        raise ValueError(f"{path}: object.smooth_angle_deg = {angle}, must be in (0, 180]")
     base = os.path.dirname(os.path.abspath(path))
     mesh = spec["object"]["mesh"]
     spec["object"]["mesh_path"] = mesh if os.path.isabs(mesh) else os.path.normpath(

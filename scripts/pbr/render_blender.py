@@ -191,6 +191,10 @@ def main():
     mesh.update()
     for poly in mesh.polygons:
         poly.use_smooth = True
+    smooth_angle_deg = float(spec["object"]["smooth_angle_deg"])  # (0, 180], load_spec checks
+    if smooth_angle_deg < 180.0:
+        mesh.use_auto_smooth = True  # edges sharper than the angle split the normals
+        mesh.auto_smooth_angle = math.radians(smooth_angle_deg)
     obj = bpy.data.objects.new("object", mesh)
     scene.collection.objects.link(obj)
     obj_mat = material("object", spec["object"]["material"], spec["object"]["color_rgb"])

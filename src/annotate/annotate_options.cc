@@ -211,6 +211,15 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
       [](auto& o) -> auto& { return o.tracker.frame.edge.lines.occlusion_contours; }, "",
       "also measure edges along the occlusion contours inside the silhouette");
   s->Add(
+      "edge.crease_contours",
+      [](auto& o) -> auto& { return o.tracker.frame.edge.lines.crease_contours; }, "",
+      "also measure edges along the mesh's creases inside the silhouette");
+  s->Add(
+       "edge.crease_min_angle_deg",
+       [](auto& o) -> auto& { return o.tracker.frame.edge.lines.crease_min_angle_deg; }, "deg",
+       "a mesh edge is a crease when its two faces' normals differ by more than this")
+      .Range(Open(0.0, 180.0));
+  s->Add(
        "edge.search_px", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.search_px; },
        "px", "the edge is looked for within this distance of the contour")
       .Range(Positive());

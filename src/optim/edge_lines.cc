@@ -47,6 +47,10 @@ Status EdgeLineOptions::Validate() const {
   if (!(min_sigma_px > 0.0) || !std::isfinite(min_sigma_px)) {
     violations.push_back(fmt::format("min_sigma_px = {}, must be finite and > 0", min_sigma_px));
   }
+  if (!(crease_min_angle_deg > 0.0 && crease_min_angle_deg < 180.0)) {
+    violations.push_back(
+        fmt::format("crease_min_angle_deg = {}, must be in (0, 180)", crease_min_angle_deg));
+  }
   if (!(clip_level > 0.0) || std::isnan(clip_level)) {
     violations.push_back(fmt::format("clip_level = {}, must be > 0", clip_level));
   }
@@ -586,7 +590,8 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
                                              const Eigen::Isometry3d& rig_from_objcentre,
                                              const cv::Mat3b& image, const Silhouette& silhouette,
                                              const EdgeLineOptions& options,
-                                             const ChromaSampling& sampling) {
+                                             const ChromaSampling& sampling,
+                                             const std::vector<Crease>* creases) {
   BCOT_RETURN_IF_ERROR(options.Validate());
   if (!options.response.IsResolved()) {
     return Status::InvalidConfig("edge lines: the image response must be known (not auto)");
@@ -609,6 +614,21 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
     const LineAnchors occlusion_anchors(caster, camera, cam_from_rig, rig_from_objcentre,
                                         occlusion_contour, options.num_lines);
     MeasureEdgeLines(occlusion_anchors, WindowOnMask::kInsideThroughout, image, table, sampling,
+                     silhouette.mask, options, &result);
+  }
+  if (options.crease_contours) {
+    CreaseContourOptions crease_options;
+    crease_options.min_angle_deg = options.crease_min_angle_deg;
+    crease_options.sample_spacing_px = options.line_spacing_px;
+    crease_options.clear_px = options.window_px;
+    std::vector<Crease> found;
+    if (creases == nullptr) found = FindCreases(caster.mesh(), options.crease_min_angle_deg);
+    const std::vector<ContourPoint> crease_contour = ExtractCreaseContour(
+        caster, camera, cam_from_rig * rig_from_objcentre * caster.mesh().objcentre_from_template(),
+        creases != nullptr ? *creases : found, crease_options);
+    const LineAnchors crease_anchors(caster, camera, cam_from_rig, rig_from_objcentre,
+                                     crease_contour, options.num_lines);
+    MeasureEdgeLines(crease_anchors, WindowOnMask::kInsideThroughout, image, table, sampling,
                      silhouette.mask, options, &result);
   }
   return result;

@@ -483,6 +483,9 @@ FrameProblem::FrameProblem(const RayCaster& caster, const FrameProblemOptions& o
   const Status status = options_.Validate();
   BCOT_CHECK(status.ok());
   BCOT_CHECK(options_.edge.lines.response.IsResolved());
+  if (options_.edge.enabled && options_.edge.lines.crease_contours) {
+    creases_ = FindCreases(caster_.mesh(), options_.edge.lines.crease_min_angle_deg);
+  }
 }
 
 FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
@@ -625,7 +628,7 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
       const ChromaSampling chroma = round + 1 == edge.rounds ? view.chroma : ChromaSampling::Full();
       StatusOr<CorrespondenceLines> lines =
           BuildEdgeLines(caster_, *view.camera, view.cam_from_rig, linearisation_pose, *view.image,
-                         silhouette, edge.lines, chroma);
+                         silhouette, edge.lines, chroma, &creases_);
       BCOT_CHECK(lines.ok());
       view_lines[v] = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
     });

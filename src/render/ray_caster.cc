@@ -455,10 +455,12 @@ void RayCaster::Render(const Camera& camera, const Eigen::Isometry3d& cam_from_o
 
 std::optional<Eigen::Vector3d> RayCaster::Intersect(const Camera& camera,
                                                     const Eigen::Isometry3d& cam_from_object,
-                                                    const Eigen::Vector2d& pixel) const {
+                                                    const Eigen::Vector2d& pixel,
+                                                    int* triangle) const {
   const auto hit =
       render_internal::Intersect(impl_->scene, RayFrame(cam_from_object), camera.PixelToRay(pixel));
   if (!hit) return std::nullopt;
+  if (triangle != nullptr) *triangle = hit->triangle_id;
   return hit->point_in_object;
 }
 

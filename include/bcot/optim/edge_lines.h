@@ -73,6 +73,7 @@
 #include "bcot/core/status.h"
 #include "bcot/optim/correspondence_lines.h"
 #include "bcot/optim/silhouette.h"
+#include "bcot/render/crease_contour.h"
 #include "bcot/render/ray_caster.h"
 
 namespace bcot {
@@ -110,6 +111,14 @@ struct EdgeLineOptions {
   // Also measure the edges along the occlusion contours inside the silhouette
   // (occlusion_contour.h), at most num_lines of them, whose window lies on the object.
   bool occlusion_contours = false;
+  // Also measure the edges along the mesh's creases inside the silhouette
+  // (crease_contour.h), at most num_lines of them: edges whose two faces meet at more than
+  // crease_min_angle_deg (in (0, 180)), both facing the camera, with nothing else within the
+  // window. On: a machined part's creases locate it better than its silhouette alone (Cycles
+  // pinion with sharp edges: rotation 0.170° → 0.124°), a smooth object has few or none
+  // (docs/notes/issue12_crease_contours.md).
+  bool crease_contours = true;
+  double crease_min_angle_deg = 40.0;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
@@ -186,12 +195,14 @@ bool ChromaSubsamplingShift(const EdgeLineSamples& samples, const EdgeFit& fit,
 
 // Builds the edge lines of one view at T0 (rig_from_objcentre). `silhouette` must be
 // RenderSilhouette at cam_from_rig · T0 · objcentre_from_template; `sampling` is how `image`'s
-// chroma was stored. Errors as BuildCorrespondenceLines.
+// chroma was stored; `creases` (with options.crease_contours): FindCreases(caster.mesh(),
+// options.crease_min_angle_deg), found here when null. Errors as BuildCorrespondenceLines.
 StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Camera& camera,
                                              const Eigen::Isometry3d& cam_from_rig,
                                              const Eigen::Isometry3d& rig_from_objcentre,
                                              const cv::Mat3b& image, const Silhouette& silhouette,
                                              const EdgeLineOptions& options = {},
-                                             const ChromaSampling& sampling = ChromaSampling());
+                                             const ChromaSampling& sampling = ChromaSampling(),
+                                             const std::vector<Crease>* creases = nullptr);
 
 }  // namespace bcot

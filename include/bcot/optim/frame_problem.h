@@ -260,6 +260,8 @@ class FrameProblem {
                    std::shared_ptr<const PoseGaussian>* posterior) const;
 
   const RayCaster& caster_;
+  // The mesh's creases, found once when the edge stage measures them (edge.lines.crease_contours).
+  std::vector<Crease> creases_;
   FrameProblemOptions options_;
 };
 

@@ -144,10 +144,12 @@ class RayCaster {
                                            const ContourOptions& options = {},
                                            const RenderedView* rendered = nullptr) const;
 
-  // Casts one ray through `pixel` (distortion honoured); returns the closest hit in O_t.
+  // Casts one ray through `pixel` (distortion honoured); returns the closest hit in O_t, and
+  // in `triangle` (when given) the index into mesh().triangles() of the triangle hit.
   std::optional<Eigen::Vector3d> Intersect(const Camera& camera,
                                            const Eigen::Isometry3d& cam_from_object,
-                                           const Eigen::Vector2d& pixel) const;
+                                           const Eigen::Vector2d& pixel,
+                                           int* triangle = nullptr) const;
 
  private:
   struct Impl;
