@@ -201,6 +201,7 @@ int main(int argc, char** argv) {
                                    model, silhouette, options->tracker.frame.lines);
       EdgeLineOptions edge_lines = options->tracker.frame.edge.lines;
       if (!edge_lines.response.IsResolved()) edge_lines.response = ImageResponse();  // synth: γ 2.2
+      edge_lines.crease_contours = false;  // the rims' evidence: the silhouette's lines
       StatusOr<CorrespondenceLines> edge = BuildEdgeLines(
           caster, camera, cam_from_rig, rig_from_objcentre, images[c], silhouette, edge_lines);
       if (!region.ok() || !edge.ok()) return Fail(region.ok() ? edge.status() : region.status());

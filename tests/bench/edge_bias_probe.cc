@@ -2,9 +2,11 @@
 // 12), run by scripts/bench_edge_bias.sh; not a test.
 //
 // For a sequence with ground truth (`bcot synth` or scripts/pbr_synth.sh), per camera and frame
-// the edge lines of the edge stage (BuildEdgeLines, bcot/optim/edge_lines.h, with the config's
-// `edge:` options and each camera's chroma sampling as edge.chroma_sampling resolves it) are
-// measured at the ground-truth pose, whose contour is the true silhouette
+// the silhouette's edge lines of the edge stage (BuildEdgeLines, bcot/optim/edge_lines.h, with
+// the config's `edge:` options but without the inner contours' lines, occlusion and crease,
+// which occlusion_edge_probe and the crease note measure, and each camera's chroma sampling as
+// edge.chroma_sampling resolves it) are measured at the ground-truth pose, whose contour is the
+// true silhouette
 // (pbr_gt_check proves it to a few hundredths of a pixel for the Blender renders). A line's μ is
 // then the measurement's own error along the outward normal (+ = the image edge is found
 // outside the true contour). Lines are binned by the direction of their normal in the image:
@@ -222,7 +224,9 @@ int main(int argc, char** argv) {
   FrameProblemOptions frame = options->tracker.frame;
   if (!frame.edge.lines.response.IsResolved()) frame.edge.lines.response = ImageResponse();
   if (coverage_mask) frame.edge.lines.response = ImageResponse::Gamma(1.0);
-  const EdgeLineOptions& edge = frame.edge.lines;
+  EdgeLineOptions edge = frame.edge.lines;  // the silhouette's lines (header)
+  edge.occlusion_contours = false;
+  edge.crease_contours = false;
   const int frames =
       max_frames > 0 ? std::min(max_frames, sequence->num_frames) : sequence->num_frames;
   // Each camera's chroma sampling as the annotation resolves it (edge.chroma_sampling); the

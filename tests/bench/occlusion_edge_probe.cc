@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
   EdgeLineOptions silhouette_only = options->tracker.frame.edge.lines;
   if (!silhouette_only.response.IsResolved()) silhouette_only.response = ImageResponse();
   silhouette_only.occlusion_contours = false;
+  silhouette_only.crease_contours = false;
   EdgeLineOptions with_occlusion = silhouette_only;
   with_occlusion.occlusion_contours = true;
   const int frames =

@@ -141,6 +141,7 @@ int main(int argc, char** argv) {
   // The edge lines decoded as the tracker does (its estimate when edge.response is auto).
   EdgeLineOptions edge_lines = options->tracker.frame.edge.lines;
   edge_lines.response = (*tracker)->image_response();
+  edge_lines.crease_contours = false;  // the contour's own lines (header)
   if (edge_offsets) {
     std::printf(
         "| frame | lines | found | mean offset (px) | median offset (px) |\n"
