@@ -115,10 +115,10 @@ struct EdgeLineOptions {
   // (crease_contour.h), at most num_lines of them: edges whose two faces meet at more than
   // crease_min_angle_deg (in (0, 180)), both facing the camera, with nothing else within the
   // window. On: a machined part's creases locate it better than its silhouette alone (Cycles
-  // pinion with sharp edges: rotation 0.170° → 0.124°), a smooth object has few or none
+  // pinion with sharp edges: rotation 0.170° → 0.127°), a smooth object has few or none
   // (docs/notes/issue12_crease_contours.md).
   bool crease_contours = true;
-  double crease_min_angle_deg = 40.0;
+  double crease_min_angle_deg = 60.0;  // CreaseContourOptions::min_angle_deg
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
