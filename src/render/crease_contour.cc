@@ -43,6 +43,33 @@ Eigen::Vector3d TriangleNormal(const Mesh& mesh, int triangle) {
   return norm > 0.0 ? Eigen::Vector3d(n / norm) : Eigen::Vector3d::Zero();
 }
 
+// Rule 2 of the header for the sample at `pixel` of `crease`: the rays at ½, 1, …, clear_steps
+// px to either side along `normal` (face a's side negative), and a pixel beside each along
+// `tangent`, hit triangles whose normals are within the angle of `min_cos_side` of that side's
+// face.
+bool WindowOnOwnFaces(const RayCaster& caster, const Camera& camera,
+                      const Eigen::Isometry3d& cam_from_object, const Crease& crease,
+                      const Eigen::Vector2d& pixel, const Eigen::Vector2d& normal,
+                      const Eigen::Vector2d& tangent, int clear_steps, double min_cos_side) {
+  for (int step = 0; step <= clear_steps; ++step) {
+    const double distance = std::max(0.5, static_cast<double>(step));
+    for (int side = -1; side <= 1; side += 2) {
+      const Eigen::Vector3d& face = side < 0 ? crease.normal_a : crease.normal_b;
+      for (int lateral = -1; lateral <= 1; ++lateral) {
+        int triangle = -1;
+        const auto hit =
+            caster.Intersect(camera, cam_from_object,
+                             pixel + side * distance * normal + lateral * tangent, &triangle);
+        if (!hit || triangle < 0 ||
+            TriangleNormal(caster.mesh(), triangle).dot(face) < min_cos_side) {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 std::vector<Crease> FindCreases(const Mesh& mesh, double min_angle_deg) {
@@ -94,7 +121,6 @@ std::vector<ContourPoint> ExtractCreaseContour(const RayCaster& caster, const Ca
                                                const std::vector<Crease>& creases,
                                                const CreaseContourOptions& options) {
   BCOT_CHECK(options.Validate().ok());
-  const Mesh& mesh = caster.mesh();
   const Eigen::Matrix3d& cam_from_object_rotation = cam_from_object.linear();
   const double min_cos_side = std::cos(0.5 * options.min_angle_deg * kPi / 180.0);
   const int clear_steps = static_cast<int>(std::floor(options.clear_px + 1e-9));
@@ -134,25 +160,13 @@ std::vector<ContourPoint> ExtractCreaseContour(const RayCaster& caster, const Ca
       const std::optional<Eigen::Vector3d> hit = caster.Intersect(camera, cam_from_object, pixel);
       const double tolerance_mm = 0.05 * x.z() / std::min(camera.fx, camera.fy);
       if (!hit || (*hit - x_in_object).norm() > tolerance_mm) continue;
-      // 2. The window holds this crease alone: either side hits its own face's orientation,
-      //    also a pixel to either side along the crease (the blur and the bilinear samples
-      //    reach that far, so a corner within a pixel is not a clean step).
-      bool clear = true;
-      for (int step = 0; step <= clear_steps && clear; ++step) {
-        const double distance = std::max(0.5, static_cast<double>(step));
-        for (int side = -1; side <= 1 && clear; side += 2) {
-          for (int lateral = -1; lateral <= 1 && clear; ++lateral) {
-            int triangle = -1;
-            const auto side_hit =
-                caster.Intersect(camera, cam_from_object,
-                                 pixel + side * distance * normal + lateral * tangent, &triangle);
-            const Eigen::Vector3d& face = side < 0 ? crease.normal_a : crease.normal_b;
-            clear = side_hit.has_value() && triangle >= 0 &&
-                    TriangleNormal(mesh, triangle).dot(face) >= min_cos_side;
-          }
-        }
+      // 2. The window holds this crease alone, also a pixel to either side along the crease
+      //    (the blur and the bilinear samples reach that far, so a corner within a pixel is
+      //    not a clean step).
+      if (!WindowOnOwnFaces(caster, camera, cam_from_object, crease, pixel, normal, tangent,
+                            clear_steps, min_cos_side)) {
+        continue;
       }
-      if (!clear) continue;
       ContourPoint point;
       point.pixel = pixel;
       point.normal = normal;

@@ -27,6 +27,18 @@ Eigen::Isometry3d ObliqueBoxPose() {
   return cam_from_object;
 }
 
+// The corner of the box with half sides `half` (centred at the origin) nearest to the camera.
+Eigen::Vector3d NearestCorner(const Eigen::Vector3d& half,
+                              const Eigen::Isometry3d& cam_from_object) {
+  Eigen::Vector3d nearest = half;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d c((i & 1) ? half.x() : -half.x(), (i & 2) ? half.y() : -half.y(),
+                            (i & 4) ? half.z() : -half.z());
+    if ((cam_from_object * c).z() < (cam_from_object * nearest).z()) nearest = c;
+  }
+  return nearest;
+}
+
 TEST(CreaseContourOptionsTest, ValidateNamesEveryViolation) {
   EXPECT_TRUE(CreaseContourOptions().Validate().ok());
   CreaseContourOptions options;
@@ -57,7 +69,8 @@ TEST(CreaseContourTest, FindsTheEdgesOfABoxAndNoneOfASmoothSurface) {
 // A box seen obliquely shows three faces; the three edges between them are the seen creases.
 // Every sample lies on one of them (its model point on the edge, projecting onto its pixel),
 // its normal crosses the edge's projection, and the window of clear_px either side lies on the
-// edge's own two faces, so no sample is within clear_px of the corner where the three meet.
+// edge's own two faces (also a pixel beside the sample), so no sample lies within a pixel of the
+// corner where the three meet.
 TEST(CreaseContourTest, ObliqueBoxGivesItsThreeSeenEdgesAwayFromTheCorner) {
   const Eigen::Vector3d half(30, 30, 30);
   const RayCaster caster(test::MakeBox(half));
@@ -68,16 +81,7 @@ TEST(CreaseContourTest, ObliqueBoxGivesItsThreeSeenEdgesAwayFromTheCorner) {
   const std::vector<ContourPoint> points =
       ExtractCreaseContour(caster, camera, cam_from_object, creases, options);
   // The corner nearest to the camera: where the three seen faces meet.
-  Eigen::Vector3d corner = Eigen::Vector3d::Zero();
-  double nearest = 1e9;
-  for (int i = 0; i < 8; ++i) {
-    const Eigen::Vector3d c((i & 1) ? half.x() : -half.x(), (i & 2) ? half.y() : -half.y(),
-                            (i & 4) ? half.z() : -half.z());
-    if ((cam_from_object * c).z() < nearest) {
-      nearest = (cam_from_object * c).z();
-      corner = c;
-    }
-  }
+  const Eigen::Vector3d corner = NearestCorner(half, cam_from_object);
   const Eigen::Vector2d corner_pixel = camera.Project(cam_from_object * corner);
   // Three edges of ~60 mm at ~400 mm: ~90 px each before the windows' margins.
   ASSERT_GT(points.size(), 150u);
@@ -141,11 +145,7 @@ TEST(CreaseContourTest, OccludedSamplesAreLeftOut) {
   // A small box in front of the middle of a seen edge (the one along x through the corner
   // nearest to the camera), at 250 mm, with its own creases left out of the list so that only
   // the occlusion changes.
-  Eigen::Vector3d corner = Eigen::Vector3d::Constant(30.0);
-  for (int i = 0; i < 8; ++i) {
-    const Eigen::Vector3d c((i & 1) ? 30 : -30, (i & 2) ? 30 : -30, (i & 4) ? 30 : -30);
-    if ((cam_from_object * c).z() < (cam_from_object * corner).z()) corner = c;
-  }
+  const Eigen::Vector3d corner = NearestCorner(Eigen::Vector3d::Constant(30.0), cam_from_object);
   const Eigen::Vector3d edge_middle = cam_from_object * Eigen::Vector3d(0, corner.y(), corner.z());
   const Eigen::Vector3d front_in_object =
       cam_from_object.inverse() * (edge_middle * (250.0 / edge_middle.z()));
