@@ -119,36 +119,53 @@ double ColorHistograms::ForegroundPosterior(int bin) const {
 
 namespace internal {
 
-// Distance of each pixel of `box()` to the other side of the silhouette boundary: of an inside
-// pixel to the nearest outside one, of an outside pixel to the nearest inside one. box() is the
-// mask's bounding box grown by grow_px (>= 1) and clipped to the image; the distances are those
-// of the whole image (every inside pixel is in the box, and the box's ring of outside pixels is
-// nearer to any inside pixel than anything beyond it), at the cost of the box only.
+// Where each pixel of `box()` lies against the silhouette boundary: whether it is within
+// margin_px of the other side (of an inside pixel, the nearest outside one; of an outside pixel,
+// the nearest inside one), and of an outside pixel its distance to the nearest inside one. box()
+// is the mask's bounding box grown by grow_px (>= 1) and clipped to the image; the results are
+// those of the whole image (every inside pixel is in the box, and the box's ring of outside
+// pixels is nearer to any inside pixel than anything beyond it), at the cost of the box only.
+// The inside test is an erosion by the disc of pixel offsets within margin_px (the same
+// squared-integer distances an exact transform compares), so only the outside needs a distance
+// transform.
 class BoundaryDistances {
  public:
-  BoundaryDistances(const cv::Mat1b& mask, int grow_px) {
-    BCOT_CHECK(grow_px >= 1);
+  BoundaryDistances(const cv::Mat1b& mask, int grow_px, double margin_px) : margin_(margin_px) {
+    BCOT_CHECK(grow_px >= 1 && margin_px >= 0.0);
     const cv::Rect bounds = cv::boundingRect(mask);
     box_ = cv::Rect(bounds.x - grow_px, bounds.y - grow_px, bounds.width + 2 * grow_px,
                     bounds.height + 2 * grow_px) &
            cv::Rect(0, 0, mask.cols, mask.rows);
     const cv::Mat1b inside = mask(box_);
-    const cv::Mat1b outside = inside == 0;
     // distanceTransform: distance of every non-zero pixel to the nearest zero one.
-    cv::distanceTransform(inside, to_outside_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-    cv::distanceTransform(outside, to_inside_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    cv::distanceTransform(inside == 0, to_inside_, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    const int reach = static_cast<int>(std::floor(margin_px));
+    cv::Mat1b disc(2 * reach + 1, 2 * reach + 1, static_cast<unsigned char>(0));
+    for (int dy = -reach; dy <= reach; ++dy) {
+      for (int dx = -reach; dx <= reach; ++dx) {
+        if (std::sqrt(static_cast<float>(dx * dx + dy * dy)) <= margin_) {
+          disc(dy + reach, dx + reach) = 1;
+        }
+      }
+    }
+    // Beyond the image every pixel counts as inside, as the distance transform takes it.
+    cv::erode(inside, clear_inside_, disc, cv::Point(-1, -1), 1, cv::BORDER_CONSTANT,
+              cv::Scalar(255));
   }
 
   const cv::Rect& box() const { return box_; }
 
   // (x, y) in image coordinates inside box(); `inside`: the mask's value there.
-  float ToOtherSide(int x, int y, bool inside) const {
-    return inside ? to_outside_(y - box_.y, x - box_.x) : to_inside_(y - box_.y, x - box_.x);
+  bool NearOtherSide(int x, int y, bool inside) const {
+    return inside ? clear_inside_(y - box_.y, x - box_.x) == 0 : ToInside(x, y) <= margin_;
   }
+  // (x, y) an outside pixel of box().
+  float ToInside(int x, int y) const { return to_inside_(y - box_.y, x - box_.x); }
 
  private:
   cv::Rect box_;
-  cv::Mat1f to_outside_;
+  float margin_;
+  cv::Mat1b clear_inside_;  // non-zero: an inside pixel farther than the margin from outside
   cv::Mat1f to_inside_;
 };
 
@@ -166,7 +183,8 @@ void GlobalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouet
   BCOT_CHECK(image.size() == silhouette.mask.size());
   if (cv::countNonZero(silhouette.mask) == 0) return;
   Update(image, silhouette,
-         internal::BoundaryDistances(silhouette.mask, options_.background_band_px + 1));
+         internal::BoundaryDistances(silhouette.mask, options_.background_band_px + 1,
+                                     options_.sample_margin_px));
 }
 
 // A box grown further than band + 1 adds only pixels farther than `band` from the silhouette,
@@ -176,17 +194,16 @@ void GlobalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouet
                               const internal::BoundaryDistances& distances) {
   const int band = options_.background_band_px;
   const cv::Rect& box = distances.box();
-  const float margin = static_cast<float>(options_.sample_margin_px);
   std::vector<int> foreground_bins;
   std::vector<int> background_bins;
   for (int y = box.y; y < box.y + box.height; ++y) {
     const cv::Vec3b* colors = image.ptr<cv::Vec3b>(y);
     for (int x = box.x; x < box.x + box.width; ++x) {
       const bool inside = silhouette.mask(y, x) != 0;
-      const float distance = distances.ToOtherSide(x, y, inside);
+      if (distances.NearOtherSide(x, y, inside)) continue;
       if (inside) {
-        if (distance > margin) foreground_bins.push_back(histograms_.Bin(colors[x]));
-      } else if (distance > margin && distance <= static_cast<float>(band)) {
+        foreground_bins.push_back(histograms_.Bin(colors[x]));
+      } else if (distances.ToInside(x, y) <= static_cast<float>(band)) {
         background_bins.push_back(histograms_.Bin(colors[x]));
       }
     }
@@ -240,11 +257,11 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
   // of a contour point, so within reach + 2 px of the mask's bounding box (the box's side).
   // One pair of distance transforms serves the fallback's update and this one.
   const internal::BoundaryDistances distances(silhouette.mask,
-                                              std::max(reach + 2, options_.background_band_px + 1));
+                                              std::max(reach + 2, options_.background_band_px + 1),
+                                              options_.sample_margin_px);
   fallback_.Update(image, silhouette, distances);
   active_.clear();
   const cv::Rect& box = distances.box();
-  const float margin = static_cast<float>(options_.sample_margin_px);
   double arc_since_centre = 0.0;
   for (size_t i = 0; i < silhouette.contour.size(); ++i) {
     const ContourPoint& point = silhouette.contour[i];
@@ -273,7 +290,7 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
       for (int x = std::max(box.x, cx - reach); x <= std::min(box.br().x - 1, cx + reach); ++x) {
         if ((Eigen::Vector2d(x, y) - point.pixel).squaredNorm() > radius * radius) continue;
         const bool inside = silhouette.mask(y, x) != 0;
-        if (distances.ToOtherSide(x, y, inside) <= margin) continue;
+        if (distances.NearOtherSide(x, y, inside)) continue;
         (inside ? foreground_bins : background_bins).push_back(binner.Bin(image(y, x)));
       }
     }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <string>
 #include <vector>
@@ -156,6 +157,58 @@ TEST_F(ColorModelSceneTest, LocalPosteriorsDiscriminateAndRegionsPersist) {
       cam_from_objcentre_ * ExpSE3((Vector6d() << 1.0, 0.5, 0.0, 0.0, 0.02, 0.01).finished());
   model->Update(image_, SilhouetteAt(moved));
   EXPECT_LT(local->num_regions(), active + active / 4);
+}
+
+// The global model samples the inside pixels farther than sample_margin_px from any outside
+// pixel and the outside pixels within (margin, band] of the nearest inside one (Euclidean
+// distances between pixel centres, the image's edge not counting as outside): the same bins,
+// in the same order, as a brute-force search over every pixel pair, for a mask that is cut by
+// the image border and has a hole, at integer and fractional margins.
+TEST(GlobalColorModelTest, SamplesByExactBoundaryDistances) {
+  cv::Mat1b mask(48, 64, static_cast<unsigned char>(0));
+  cv::ellipse(mask, cv::Point(20, 10), cv::Size(22, 14), 15.0, 0.0, 360.0, cv::Scalar(255), -1);
+  cv::circle(mask, cv::Point(18, 12), 4, cv::Scalar(0), -1);
+  cv::RNG rng(7);
+  cv::Mat3b image(mask.size());
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  Silhouette silhouette;
+  silhouette.mask = mask;
+  for (double margin : {0.0, 1.0, 2.0, 2.5, 3.2}) {
+    SCOPED_TRACE(margin);
+    ColorModelOptions options;
+    options.sample_margin_px = margin;
+    options.background_band_px = 7;
+    GlobalColorModel model(options);
+    model.Update(image, silhouette);
+    std::vector<int> foreground, background;
+    ColorHistograms expected(options.bins_per_channel);
+    for (int y = 0; y < mask.rows; ++y) {
+      for (int x = 0; x < mask.cols; ++x) {
+        const bool inside = mask(y, x) != 0;
+        int nearest_squared = -1;
+        for (int v = 0; v < mask.rows; ++v) {
+          for (int u = 0; u < mask.cols; ++u) {
+            if ((mask(v, u) != 0) == inside) continue;
+            const int d2 = (u - x) * (u - x) + (v - y) * (v - y);
+            if (nearest_squared < 0 || d2 < nearest_squared) nearest_squared = d2;
+          }
+        }
+        const double distance = std::sqrt(static_cast<double>(nearest_squared));
+        if (nearest_squared < 0 || distance <= margin) continue;
+        if (inside) {
+          foreground.push_back(expected.Bin(image(y, x)));
+        } else if (distance <= options.background_band_px) {
+          background.push_back(expected.Bin(image(y, x)));
+        }
+      }
+    }
+    ASSERT_FALSE(foreground.empty());
+    ASSERT_FALSE(background.empty());
+    expected.Update(foreground, background, options.learning_rate_foreground,
+                    options.learning_rate_background);
+    EXPECT_EQ(model.histograms().foreground(), expected.foreground());
+    EXPECT_EQ(model.histograms().background(), expected.background());
+  }
 }
 
 TEST(DiscOverlapFractionTest, MatchesACountOfGridPoints) {
