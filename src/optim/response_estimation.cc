@@ -1,6 +1,7 @@
 #include "bcot/optim/response_estimation.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -232,7 +233,11 @@ StatusOr<ResponseEstimate> EstimateImageResponse(const FrameProblem& problem,
                                                  const ResponseEstimationOptions& options) {
   BCOT_RETURN_IF_ERROR(options.Validate());
   ResponseEstimate estimate;
-  for (const ImageResponse& response : options.candidates) {
+  // The candidates are independent solves of the same frame: concurrent, each score in its
+  // candidate's place, so the result does not depend on the threads.
+  estimate.scores.resize(options.candidates.size());
+  tbb::parallel_for(size_t{0}, options.candidates.size(), [&](size_t c) {
+    const ImageResponse& response = options.candidates[c];
     FrameProblemOptions frame = problem.options();
     // Without the crease lines, as the estimate was calibrated: where a coarse mesh's facet
     // edges pass as creases their lines scatter (docs/notes/issue12_crease_contours.md), and
@@ -242,7 +247,7 @@ StatusOr<ResponseEstimate> EstimateImageResponse(const FrameProblem& problem,
     frame.edge.rounds = options.edge_rounds;
     const FrameProblem candidate(problem.caster(), frame);
     Eigen::Isometry3d solved = rig_from_objcentre;
-    ResponseScore score;
+    ResponseScore& score = estimate.scores[c];
     score.response = response;
     score.slope_px = kNaN;
     score.slope_standard_error_px = kNaN;
@@ -259,8 +264,7 @@ StatusOr<ResponseEstimate> EstimateImageResponse(const FrameProblem& problem,
         score.spread_px = InterquartileRange(&offsets);
       }
     }
-    estimate.scores.push_back(score);
-  }
+  });
   const ResponseScore& first = estimate.scores.front();
   if (!std::isfinite(first.slope_px)) {
     return Status::InvalidInput(fmt::format(

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <memory>
@@ -151,6 +152,34 @@ TEST(EstimateImageResponseTest, RecognisesALinearCameraAndKeepsSrgbForADisplayGa
       display_problem, display_camera.FrameViews(), display_camera.rig_from_objcentre());
   ASSERT_TRUE(display.ok()) << display.status().message();
   EXPECT_EQ(display->response, ImageResponse()) << Describe(*display);
+}
+
+// The candidates are solved concurrently: one and two threads give the same scores bit for bit.
+TEST(EstimateImageResponseTest, CandidatesSolvedConcurrentlyGiveTheOneThreadScores) {
+  const SynthFrame frame(1.0);
+  const FrameProblem problem(frame.caster(), FrameProblemOptions());
+  auto estimate = [&](int threads) {
+    StatusOr<ResponseEstimate> result = Status::InvalidInput("not run");
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      result = EstimateImageResponse(problem, frame.FrameViews(), frame.rig_from_objcentre());
+    });
+    return result;
+  };
+  const StatusOr<ResponseEstimate> one = estimate(1);
+  const StatusOr<ResponseEstimate> two = estimate(2);
+  ASSERT_TRUE(one.ok()) << one.status().message();
+  ASSERT_TRUE(two.ok()) << two.status().message();
+  EXPECT_EQ(one->response, two->response);
+  ASSERT_EQ(one->scores.size(), two->scores.size());
+  for (size_t c = 0; c < one->scores.size(); ++c) {
+    SCOPED_TRACE(one->scores[c].response.Name());
+    EXPECT_EQ(one->scores[c].response, two->scores[c].response);
+    EXPECT_GT(one->scores[c].lines, 0);
+    EXPECT_EQ(one->scores[c].lines, two->scores[c].lines);
+    EXPECT_EQ(one->scores[c].slope_px, two->scores[c].slope_px);
+    EXPECT_EQ(one->scores[c].spread_px, two->scores[c].spread_px);
+  }
 }
 
 TEST(EstimateImageResponseTest, TooFewLinesIsAnError) {
