@@ -255,7 +255,7 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
   // Pixels within the sample margin of the silhouette boundary are mixed (anti-aliased,
   // blurred) and not sampled, as in the global model. Every sampled pixel lies within `reach`
   // of a contour point, so within reach + 2 px of the mask's bounding box (the box's side).
-  // One pair of distance transforms serves the fallback's update and this one.
+  // One set of boundary distances serves the fallback's update and this one.
   const internal::BoundaryDistances distances(silhouette.mask,
                                               std::max(reach + 2, options_.background_band_px + 1),
                                               options_.sample_margin_px);
