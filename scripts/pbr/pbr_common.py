@@ -32,6 +32,9 @@ DEFAULTS = {
         "azimuth_deg": 0.0,          # of the rig's bisector
         "elevation_deg": 18.0,       # cameras look down onto the object by this angle
         "distance_mm": 750.0,
+        # further cameras (cam2, cam3, ...), each [azimuth_deg, elevation_deg] on the same
+        # sphere about the target, e.g. [[0, 60]]: one above the ring, on the bisector
+        "extra_views": [],
     },
     "object": {
         "mesh": "../../data/meshes/bunny.obj",
@@ -123,6 +126,11 @@ def load_spec(path, overrides=()):
     spec = deep_merge(DEFAULTS, raw, os.path.basename(path))
     for assignment in overrides:
         set_override(spec, assignment)
+    for view in spec["camera"]["extra_views"]:
+        if (not isinstance(view, list) or len(view) != 2 or
+                not all(isinstance(v, (int, float)) for v in view) or not -80.0 <= view[1] <= 80.0):
+            raise ValueError(f"{path}: camera.extra_views entry {view}: must be "
+                             "[azimuth_deg, elevation_deg] with the elevation in [-80, 80]")
     angle = spec["object"]["smooth_angle_deg"]
     if not isinstance(angle, (int, float)) or not 0.0 < angle <= 180.0:
         raise ValueError(f"{path}: object.smooth_angle_deg = {angle}, must be in (0, 180]")
@@ -288,7 +296,8 @@ def make_plan(spec):
     unit_to_mm = float(obj["size_mm"]) / float((raw_max - raw_min).max())
     bbox_center_mm = 0.5 * (raw_min + raw_max) * unit_to_mm
 
-    # Rig: the target point above the table, two cameras on a circle about the vertical.
+    # Rig: the target point above the table, two cameras on a circle about the vertical (and
+    # any extra views on the same sphere).
     table_top_mm = 750.0
     target = np.array([0.0, 0.0, table_top_mm + float(mot["lift_mm"])])
     w, h = int(cam["width"]), int(cam["height"])
@@ -298,8 +307,11 @@ def make_plan(spec):
     cy = (h - 1) / 2.0 + float(cam["principal_offset_px"][1])
     cameras = []
     half = 0.5 * float(cam["included_angle_deg"])
-    for i, az in enumerate([cam["azimuth_deg"] - half, cam["azimuth_deg"] + half]):
-        a, e = math.radians(az), math.radians(cam["elevation_deg"])
+    views = [(cam["azimuth_deg"] - half, cam["elevation_deg"]),
+             (cam["azimuth_deg"] + half, cam["elevation_deg"])]
+    views += [(float(az), float(el)) for az, el in cam["extra_views"]]
+    for i, (az, el) in enumerate(views):
+        a, e = math.radians(az), math.radians(el)
         d = float(cam["distance_mm"])
         eye = target + d * np.array([math.cos(e) * math.cos(a), math.cos(e) * math.sin(a),
                                      math.sin(e)])
