@@ -192,6 +192,19 @@ Eigen::Isometry3d Mesh::objcentre_from_template() const {
   return objcentre_from_template;
 }
 
+std::vector<Eigen::Vector3f> Mesh::VertexNormals() const {
+  std::vector<Eigen::Vector3f> normals(vertices_.size(), Eigen::Vector3f::Zero());
+  for (const Eigen::Vector3i& t : triangles_) {
+    const Eigen::Vector3f& a = vertices_[t.x()];
+    const Eigen::Vector3f twice_area_normal = (vertices_[t.y()] - a).cross(vertices_[t.z()] - a);
+    for (int i = 0; i < 3; ++i) normals[t[i]] += twice_area_normal;
+  }
+  for (Eigen::Vector3f& n : normals) {
+    if (n.norm() > 0.0f) n.normalize();
+  }
+  return normals;
+}
+
 Mesh Mesh::Transformed(const Eigen::Isometry3d& new_from_old, double scale) const {
   std::vector<Eigen::Vector3f> vertices;
   vertices.reserve(vertices_.size());

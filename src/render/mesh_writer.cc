@@ -16,22 +16,6 @@ std::string CommentLines(const std::string& comment, const std::string& prefix) 
   return text;
 }
 
-// Per-vertex normals: the area-weighted sum of the normals of the triangles around a vertex,
-// normalised; zero for a vertex of degenerate triangles only.
-std::vector<Eigen::Vector3f> VertexNormals(const Mesh& mesh) {
-  std::vector<Eigen::Vector3f> normals(mesh.vertices().size(), Eigen::Vector3f::Zero());
-  for (const Eigen::Vector3i& t : mesh.triangles()) {
-    const Eigen::Vector3f& a = mesh.vertices()[t.x()];
-    const Eigen::Vector3f twice_area_normal =
-        (mesh.vertices()[t.y()] - a).cross(mesh.vertices()[t.z()] - a);
-    for (int i = 0; i < 3; ++i) normals[t[i]] += twice_area_normal;
-  }
-  for (Eigen::Vector3f& n : normals) {
-    if (n.norm() > 0.0f) n.normalize();
-  }
-  return normals;
-}
-
 }  // namespace
 
 std::string FormatObjMesh(const Mesh& mesh, const std::string& comment) {
@@ -52,7 +36,7 @@ std::string FormatPlyMesh(const Mesh& mesh, const std::string& comment) {
       "property float nx\nproperty float ny\nproperty float nz\n"
       "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
       mesh.vertices().size(), mesh.triangles().size());
-  const std::vector<Eigen::Vector3f> normals = VertexNormals(mesh);
+  const std::vector<Eigen::Vector3f> normals = mesh.VertexNormals();
   for (size_t i = 0; i < normals.size(); ++i) {
     const Eigen::Vector3f& v = mesh.vertices()[i];
     text += fmt::format("{} {} {} {} {} {}\n", v.x(), v.y(), v.z(), normals[i].x(), normals[i].y(),

@@ -44,22 +44,8 @@ Basis ShBasis(const Eigen::Vector3d& n) {
   return y;
 }
 
-// Area-weighted vertex normals of `mesh`.
-std::vector<Eigen::Vector3d> VertexNormals(const Mesh& mesh) {
-  std::vector<Eigen::Vector3d> normals(mesh.vertices().size(), Eigen::Vector3d::Zero());
-  for (const Eigen::Vector3i& t : mesh.triangles()) {
-    const Eigen::Vector3d a = mesh.vertices()[t[0]].cast<double>();
-    const Eigen::Vector3d b = mesh.vertices()[t[1]].cast<double>();
-    const Eigen::Vector3d c = mesh.vertices()[t[2]].cast<double>();
-    const Eigen::Vector3d n = (b - a).cross(c - a);  // length = twice the area
-    for (int k = 0; k < 3; ++k) normals[t[k]] += n;
-  }
-  for (Eigen::Vector3d& n : normals) n.normalize();
-  return normals;
-}
-
 // The smooth normal (object frame) at `p` on triangle `t`.
-Eigen::Vector3d SmoothNormal(const Mesh& mesh, const std::vector<Eigen::Vector3d>& normals, int t,
+Eigen::Vector3d SmoothNormal(const Mesh& mesh, const std::vector<Eigen::Vector3f>& normals, int t,
                              const Eigen::Vector3d& p) {
   const Eigen::Vector3i& tri = mesh.triangles()[t];
   const Eigen::Vector3d a = mesh.vertices()[tri[0]].cast<double>();
@@ -70,7 +56,9 @@ Eigen::Vector3d SmoothNormal(const Mesh& mesh, const std::vector<Eigen::Vector3d
   const double wa = (c - b).cross(p - b).dot(n) / area2;
   const double wb = (a - c).cross(p - c).dot(n) / area2;
   const double wc = 1.0 - wa - wb;
-  return (wa * normals[tri[0]] + wb * normals[tri[1]] + wc * normals[tri[2]]).normalized();
+  return (wa * normals[tri[0]].cast<double>() + wb * normals[tri[1]].cast<double>() +
+          wc * normals[tri[2]].cast<double>())
+      .normalized();
 }
 
 struct Sample {
@@ -106,7 +94,7 @@ int Run(int argc, char** argv) {
   const Sequence& sequence = loaded->sequence;
   const Mesh& mesh = loaded->mesh;
   const RayCaster caster(mesh);
-  const std::vector<Eigen::Vector3d> vertex_normals = VertexNormals(mesh);
+  const std::vector<Eigen::Vector3f> vertex_normals = mesh.VertexNormals();
   const LinearTable table{ImageResponse()};
   const int views = sequence.rig.size();
   RenderOptions render;
@@ -130,9 +118,9 @@ int Run(int argc, char** argv) {
         continue;
       }
       const cv::Vec3f q = rendered.point_in_object(y, x);
-      out.push_back(rig_from_object.linear() *
-                    SmoothNormal(mesh, vertex_normals, rendered.triangle_id(y, x),
-                                 Eigen::Vector3d(q[0], q[1], q[2])));
+      out.push_back(rig_from_object.linear() * SmoothNormal(mesh, vertex_normals,
+                                                            rendered.triangle_id(y, x),
+                                                            Eigen::Vector3d(q[0], q[1], q[2])));
     }
     return out;
   };
@@ -152,8 +140,9 @@ int Run(int argc, char** argv) {
       const Eigen::Isometry3d cam_from_object = sequence.rig[v].cam_from_rig * loaded->truth[f];
       const RenderedView rendered = caster.Render(sequence.rig[v].camera, cam_from_object, render);
       cv::Mat1b inner;
-      cv::erode(rendered.mask, inner,
-                cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * erode + 1, 2 * erode + 1)));
+      cv::erode(
+          rendered.mask, inner,
+          cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * erode + 1, 2 * erode + 1)));
       std::vector<Eigen::Vector2i> pixels;
       for (int y = 0; y < inner.rows; ++y) {
         for (int x = 0; x < inner.cols; ++x) {
@@ -211,8 +200,8 @@ int Run(int argc, char** argv) {
   mean_rgb /= samples.size();
   std::printf("%zu inside pixels over %zu frames x %d views; mean linear RGB %.3f %.3f %.3f\n",
               samples.size(), frames.size(), views, mean_rgb.x(), mean_rgb.y(), mean_rgb.z());
-  std::printf("SH-2 light fit: robust residual sd per channel %.4f %.4f %.4f\n", scale[0],
-              scale[1], scale[2]);
+  std::printf("SH-2 light fit: robust residual sd per channel %.4f %.4f %.4f\n", scale[0], scale[1],
+              scale[2]);
 
   // Energy vs turn per frame and rig axis, both views together, pixels fixed.
   const Eigen::Vector3d centre = mesh.bbox_center();
@@ -220,19 +209,19 @@ int Run(int argc, char** argv) {
   std::array<std::vector<double>, 3> minima;
   std::array<std::vector<double>, 3> curvatures;
   for (int f : frames) {
-    std::array<std::vector<Eigen::Vector2i>, 8> pixels;
-    std::array<std::vector<const Sample*>, 8> of_view;
+    std::vector<std::vector<Eigen::Vector2i>> pixels(views);
+    std::vector<std::vector<const Sample*>> of_view(views);
     for (const Sample& s : samples) {
       if (s.frame != f) continue;
       pixels[s.view].push_back(s.pixel);
       of_view[s.view].push_back(&s);
     }
     std::printf("frame %3d", f);
+    const Eigen::Vector3d c_rig = loaded->truth[f] * centre;
     for (int axis = 0; axis < 3; ++axis) {
       std::vector<double> deltas, energies;
       for (int g = 0; g < grid; ++g) {
         const double delta = -range_deg + 2.0 * range_deg * g / (grid - 1);
-        const Eigen::Vector3d c_rig = loaded->truth[f] * centre;
         const Eigen::Isometry3d turn =
             Eigen::Translation3d(c_rig) *
             Eigen::AngleAxisd(delta * M_PI / 180.0, Eigen::Vector3d::Unit(axis)) *
@@ -252,14 +241,14 @@ int Run(int argc, char** argv) {
         deltas.push_back(delta);
         energies.push_back(energy);
       }
-      const int best = static_cast<int>(std::min_element(energies.begin(), energies.end()) -
-                                        energies.begin());
+      const int best =
+          static_cast<int>(std::min_element(energies.begin(), energies.end()) - energies.begin());
       const int mid = std::clamp(best, 1, grid - 2);
       const double h = deltas[1] - deltas[0];
       const double e0 = energies[mid - 1], e1 = energies[mid], e2 = energies[mid + 1];
       const double curvature = (e0 - 2.0 * e1 + e2) / (h * h);
-      const double minimum = curvature > 0.0 ? deltas[mid] + 0.5 * h * (e0 - e2) / (e0 - 2.0 * e1 + e2)
-                                             : deltas[best];
+      const double minimum =
+          curvature > 0.0 ? deltas[mid] + 0.5 * h * (e0 - e2) / (e0 - 2.0 * e1 + e2) : deltas[best];
       minima[axis].push_back(minimum);
       curvatures[axis].push_back(curvature);
       std::printf(" | %c min %+.3f° curv %.3g", "xyz"[axis], minimum, curvature);
@@ -275,9 +264,11 @@ int Run(int argc, char** argv) {
     }
     const double n = static_cast<double>(minima[axis].size());
     mean /= n;
-    std::printf("rig axis %c: minimum at %+.3f° ± %.3f° (mean ± sd over %zu frames), mean curvature %.3g per deg²\n",
-                "xyz"[axis], mean, std::sqrt(std::max(0.0, sq / n - mean * mean)),
-                minima[axis].size(), curv / n);
+    std::printf(
+        "rig axis %c: minimum at %+.3f° ± %.3f° (mean ± sd over %zu frames), mean curvature %.3g "
+        "per deg²\n",
+        "xyz"[axis], mean, std::sqrt(std::max(0.0, sq / n - mean * mean)), minima[axis].size(),
+        curv / n);
   }
   return 0;
 }

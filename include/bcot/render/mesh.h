@@ -37,6 +37,10 @@ class Mesh {
   double diameter() const { return (bbox_max_ - bbox_min_).maxCoeff(); }
   // O_o from O_t: a pure translation by −bbox_center().
   Eigen::Isometry3d objcentre_from_template() const;
+  // Per-vertex normals in vertices() order: the area-weighted sum of the normals of the
+  // triangles around a vertex (from their winding), normalised; zero at a vertex of degenerate
+  // triangles only.
+  std::vector<Eigen::Vector3f> VertexNormals() const;
 
   // Returns a copy with every vertex mapped to scale · (new_from_old · v): the rigid transform
   // first, then a uniform scale about the new origin, so that
