@@ -5,8 +5,10 @@
 # cannot be told, Pearson correlation, mean |measured − true| p90, the share within 0.5 px, mean
 # measured/true p90 (where true >= 0.5 px) and the verdict. Pose sets: the annotation
 # (configs/annotate.yaml), ground truth, ground truth shifted 1, 2 and 3 px in cam0's image,
-# rotated about cam0's axis so the contour moves up to 1 and 3 px, and (synthetic sets) ground
-# truth perturbed per frame by a seeded random rigid motion of up to 1.5° / 4 mm.
+# rotated about cam0's axis so the contour moves up to 1 and 3 px, and (demo, glossy_fast)
+# ground truth perturbed per frame by a seeded random rigid motion of up to 1.5° / 4 mm.
+# Sequences: bcot synth's demo, glossy_fast and a spool with shaded rims (spool_rim), and with
+# --pbr three Cycles renders.
 #
 # Usage: scripts/bench_quality.sh [frames per synthetic sequence, default 20] [--pbr]
 #          [--set key=value ...]
@@ -48,6 +50,15 @@ for name in demo glossy_fast; do
   fi
   names+=("$name") seqs+=("$seq") extra+=("--perturbed --seed 1")
 done
+# The spool of scripts/bench_throughput.sh (shaded rims, seed 23): its flanges' rims are creases
+# a few px inside the silhouette where the flange's side has little contrast against the
+# background (quality step 4b, docs/quality.md).
+seq="$work/spool_rim"
+if [ ! -f "$seq/rig.yaml" ]; then
+  "$dir/bcot" synth --quiet --config configs/synth/shaded_rim.yaml --out "$seq" --set seed=23 \
+    --set object.mesh="$PWD/data/meshes/spool.off" --set motion.num_frames="$frames"
+fi
+names+=(spool_rim) seqs+=("$seq") extra+=("")
 if [ "$pbr" = 1 ]; then
   for spec in configs/pbr/bunny_plastic.json configs/pbr/pinion_metal_moving_light.json \
               configs/pbr/spool_dark.json; do

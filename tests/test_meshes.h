@@ -52,4 +52,29 @@ inline Mesh MakeTorus(double major, double minor, int segments_u, int segments_v
   return Mesh::FromArrays(std::move(vertices), std::move(triangles));
 }
 
+// Closed cylinder around the z axis: radius `radius`, from z = −half_length to +half_length
+// (mm), `segments` side facets, caps as triangle fans; wound counter-clockwise seen from outside
+// (outward normals), so its rims are 90° creases.
+inline Mesh MakeCylinder(double radius, double half_length, int segments) {
+  std::vector<Eigen::Vector3f> vertices;
+  for (const double z : {-half_length, half_length}) {
+    for (int i = 0; i < segments; ++i) {
+      const double angle = 2.0 * kPi * i / segments;
+      vertices.emplace_back(radius * std::cos(angle), radius * std::sin(angle), z);
+    }
+  }
+  const int bottom_centre = 2 * segments, top_centre = 2 * segments + 1;
+  vertices.emplace_back(0.0, 0.0, -half_length);
+  vertices.emplace_back(0.0, 0.0, half_length);
+  std::vector<Eigen::Vector3i> triangles;
+  for (int i = 0; i < segments; ++i) {
+    const int next = (i + 1) % segments;
+    triangles.emplace_back(i, next, segments + next);  // side
+    triangles.emplace_back(i, segments + next, segments + i);
+    triangles.emplace_back(top_centre, segments + i, segments + next);
+    triangles.emplace_back(bottom_centre, next, i);
+  }
+  return Mesh::FromArrays(std::move(vertices), std::move(triangles));
+}
+
 }  // namespace bcot::test

@@ -75,6 +75,21 @@ OptionSchema<QualityOptions>* BuildQualityOptionSchema() {
        "smallest edge step in units of the profile fit's noise")
       .Range(NonNegative());
   s->Add(
+      "quality.interior_edges", [](auto& o) -> auto& { return o.interior_edges; }, "",
+      "drop boundaries found on the model's own creases or occlusion contours instead of near "
+      "its silhouette");
+  s->Add(
+       "quality.interior_edge_px", [](auto& o) -> auto& { return o.interior_edge_px; }, "px",
+       "... a boundary within this of such an edge and nearer to it than to the silhouette")
+      .Range(Positive());
+  s->Add(
+       "quality.crease_min_angle_deg", [](auto& o) -> auto& { return o.crease_min_angle_deg; },
+       "deg", "an interior crease: an edge whose two faces' normals differ by more than this")
+      .Check([](const O& o) {
+        return o.crease_min_angle_deg > 0 && o.crease_min_angle_deg < 180 ? ""
+                                                                          : "must be in (0, 180)";
+      });
+  s->Add(
        "quality.bootstrap_resamples", [](auto& o) -> auto& { return o.bootstrap_resamples; }, "",
        "bootstrap resamples for the uncertainty of the statistic (0 = none)")
       .Check([](const O& o) {

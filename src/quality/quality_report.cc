@@ -13,7 +13,9 @@
 #include "bcot/optim/silhouette.h"
 #include "bcot/quality/boundary_search.h"
 #include "bcot/quality/rigid_motion_fit.h"
+#include "bcot/render/crease_contour.h"
 #include "bcot/render/mesh.h"
+#include "bcot/render/occlusion_contour.h"
 
 namespace bcot {
 namespace {
@@ -42,14 +44,15 @@ bool IsMeasured(const ViewFrameQuality& quality, const QualityOptions& options) 
          quality.found >= options.min_found_fraction * quality.points;
 }
 
-// Measures one frame-view.
-StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& camera,
-                                       const Eigen::Isometry3d& cam_from_object,
-                                       const std::string& image_path, DecodedImageCache* images,
-                                       const Eigen::Vector3d& object_centre,
-                                       double object_diameter_mm, const QualityOptions& options,
-                                       const LinearTable& linear, uint32_t seed) {
-  BCOT_ASSIGN_OR_RETURN(const cv::Mat3b image, ReadCameraImage(image_path, camera, images));
+}  // namespace
+
+ViewFrameQuality MeasureFrameView(const RayCaster& caster, const Camera& camera,
+                                  const Eigen::Isometry3d& cam_from_object, const cv::Mat3b& image,
+                                  const QualityOptions& options, const LinearTable& linear,
+                                  const std::vector<Crease>& creases, uint32_t seed) {
+  BCOT_CHECK(image.cols == camera.width && image.rows == camera.height);
+  const Eigen::Vector3d object_centre = caster.mesh().bbox_center();
+  const double object_diameter_mm = caster.mesh().diameter();
   ViewFrameQuality quality;
   const Silhouette silhouette =
       RenderSilhouetteContour(caster, camera, cam_from_object, QualityContourOptions(options));
@@ -120,6 +123,20 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
     sigmas = std::move(refined.sigmas_px);
     quality.ambiguous = refined.ambiguous;
   }
+  if (options.interior_edges) {
+    CreaseContourOptions crease_options;
+    crease_options.min_angle_deg = options.crease_min_angle_deg;
+    // Every seen sample, however close to another edge, and dense enough that a found boundary
+    // on the crease lies within interior_edge_px of one.
+    crease_options.clear_px = 0.0;
+    crease_options.sample_spacing_px = options.interior_edge_px;
+    std::vector<ContourPoint> interior =
+        ExtractCreaseContour(caster, camera, cam_from_object, creases, crease_options);
+    const std::vector<ContourPoint> occlusion =
+        ExtractOcclusionContour(caster, camera, cam_from_object);
+    interior.insert(interior.end(), occlusion.begin(), occlusion.end());
+    quality.ambiguous += DropInteriorEdgeMatches(silhouette.contour, interior, options, &offsets);
+  }
   for (double offset : offsets) quality.found += std::isfinite(offset) ? 1 : 0;
   quality.raw_median_px = AbsPercentile(offsets, 0.5);
   quality.raw_p90_px = AbsPercentile(offsets, 0.9);
@@ -159,6 +176,8 @@ StatusOr<ViewFrameQuality> MeasureView(const RayCaster& caster, const Camera& ca
   quality.verifiable = measurable && (quality.bad || statistic + margin <= options.threshold_px);
   return quality;
 }
+
+namespace {
 
 void Summarize(QualityReport* report) {
   const QualityOptions& options = report->options;
@@ -247,6 +266,9 @@ StatusOr<QualityReport> MeasureQuality(const Sequence& sequence, const RayCaster
   }
   BCOT_ASSIGN_OR_RETURN(const std::vector<int> indices, ViewIndices(sequence.rig, view_names));
   const Mesh& mesh = caster.mesh();
+  const std::vector<Crease> creases = options.interior_edges
+                                          ? FindCreases(mesh, options.crease_min_angle_deg)
+                                          : std::vector<Crease>();
   QualityReport report;
   report.sequence_dir = sequence.dir;
   report.options = options;
@@ -257,15 +279,15 @@ StatusOr<QualityReport> MeasureQuality(const Sequence& sequence, const RayCaster
     const int frame = job / static_cast<int>(indices.size());
     const int view = job % static_cast<int>(indices.size());
     const RigCamera& camera = sequence.rig[indices[view]];
-    StatusOr<ViewFrameQuality> quality =
-        MeasureView(caster, camera.camera, camera.cam_from_rig * rig_from_object[frame],
-                    sequence.image_paths[indices[view]][frame], images, mesh.bbox_center(),
-                    mesh.diameter(), options, linear, static_cast<uint32_t>(job + 1));
-    if (quality.ok()) {
-      report.frames[frame][view] = *quality;
-    } else {
-      errors[job] = quality.status();
+    const StatusOr<cv::Mat3b> image =
+        ReadCameraImage(sequence.image_paths[indices[view]][frame], camera.camera, images);
+    if (!image.ok()) {
+      errors[job] = image.status();
+      return;
     }
+    report.frames[frame][view] =
+        MeasureFrameView(caster, camera.camera, camera.cam_from_rig * rig_from_object[frame],
+                         *image, options, linear, creases, static_cast<uint32_t>(job + 1));
   });
   for (const Status& error : errors) BCOT_RETURN_IF_ERROR(error);
   Summarize(&report);

@@ -41,6 +41,15 @@ RefinedOffsets RefineOffsetsOnEdges(const std::vector<ContourPoint>& contour,
                                     const std::vector<double>& offsets, const cv::Mat3b& image,
                                     const LinearTable& linear, const QualityOptions& options);
 
+// Step 4b (options.interior_edges): sets to NaN each finite offset whose boundary (contour
+// point + offset · normal) lies nearer to a point of `interior`, the model's interior edges
+// (creases, occlusion contours) projected at the same pose, than to its own contour point, and
+// within options.interior_edge_px of it; returns how many. Such a step is more likely that
+// edge than the silhouette, so the point cannot tell where the silhouette is.
+int DropInteriorEdgeMatches(const std::vector<ContourPoint>& contour,
+                            const std::vector<ContourPoint>& interior,
+                            const QualityOptions& options, std::vector<double>* offsets);
+
 // Median and 90th percentile of |values| ignoring NaN; NaN when none is finite.
 double AbsPercentile(const std::vector<double>& values, double fraction);
 

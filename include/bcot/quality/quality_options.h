@@ -50,6 +50,18 @@ struct QualityOptions {
   double edge_search_px = 2.0;
   // Smallest edge step in units of its profile fit's residual standard deviation; >= 0.
   double edge_min_snr = 4.0;
+  // Step 4b: the model's interior edges at the pose under test (its creases sharper than
+  // crease_min_angle_deg and its occlusion contours) are steps in the image of their own. A
+  // boundary found nearer to such an edge than to its contour point is more likely that edge
+  // than the silhouette (the rim of a
+  // flange a few px inside a spool's silhouette whose side has no contrast against the
+  // background), so it is dropped as ambiguous (DropInteriorEdgeMatches).
+  bool interior_edges = true;
+  // A found boundary is taken for an interior edge within this distance of it (px), when it
+  // lies nearer to that edge than to its own contour point; > 0.
+  double interior_edge_px = 1.0;
+  // In (0, 180); the edge stage's edge.crease_min_angle_deg.
+  double crease_min_angle_deg = 60.0;
   // Bootstrap resamples of the contour points for the uncertainty σ of the judged statistic
   // (statistic_sigma_px; the fit's prediction σ is added to it); 0 = none, else >= 2.
   int bootstrap_resamples = 32;

@@ -25,6 +25,14 @@
 //      where the two sides' colour likelihoods cross, which a shaded rim, a highlight or similar
 //      colours move by a pixel or more; the centre of a blurred step does not move. The signed
 //      offset t* is the point's raw boundary offset (px).
+//   4b. (interior_edges, default) The model's own interior edges at the pose (its creases and
+//      occlusion contours, projected) are steps in the image too, and near the silhouette they
+//      can be the stronger step: the rim of a flange 3 px inside the silhouette of a spool
+//      seen almost end-on, whose side has no contrast against the background. A boundary found
+//      within interior_edge_px of such an edge and nearer to it than to its contour point is
+//      more likely that edge, so the point is dropped as ambiguous (DropInteriorEdgeMatches in
+//      boundary_search.h). A true pose error still moves the found boundaries of the other
+//      points, so it is still measured.
 //   5. (fit_rigid_motion, default) A pose error moves the whole contour coherently, while a
 //      boundary found on a clutter edge, a highlight or a blurred edge is wrong at that point
 //      only. So fit the small rigid motion of the object that best explains the raw offsets
@@ -72,6 +80,7 @@
 #include "bcot/core/status.h"
 #include "bcot/core/version.h"
 #include "bcot/quality/quality_options.h"
+#include "bcot/render/crease_contour.h"
 #include "bcot/render/ray_caster.h"
 
 namespace bcot {
@@ -90,6 +99,7 @@ struct ViewFrameQuality {
   int points = 0;          // contour samples
   int found = 0;           // samples with a usable boundary
   int ambiguous = 0;       // samples whose posterior boundary had no clean image edge (step 4)
+                           // or lay on an interior edge of the model (step 4b)
   bool verifiable = true;  // false: "cannot tell" (see above); then bad is false too
   bool bad = false;
   double Statistic(QualityStatistic statistic) const {
@@ -121,6 +131,15 @@ struct QualityReport {
   // empty: the quality layer does not know the options that produced the poses).
   Provenance provenance;
 };
+
+// Measures one frame-view (steps 1–5 above): `image` (BGR, camera's size, CHECKed) with the
+// object at `cam_from_object` (O_t, mm); `linear` decodes its codes; `creases` are
+// FindCreases(caster.mesh(), options.crease_min_angle_deg) (unused without
+// options.interior_edges); `seed` seeds the bootstrap. The verdict fields are set.
+ViewFrameQuality MeasureFrameView(const RayCaster& caster, const Camera& camera,
+                                  const Eigen::Isometry3d& cam_from_object, const cv::Mat3b& image,
+                                  const QualityOptions& options, const LinearTable& linear,
+                                  const std::vector<Crease>& creases, uint32_t seed);
 
 // Measures every frame and view. `rig_from_object` (O_t, mm) has one pose per frame of the
 // sequence; `view_names` are rig cameras (empty = all); `response` is the cameras' (the edge
