@@ -110,24 +110,16 @@ RefinedOffsets RefineOffsetsOnEdges(const std::vector<ContourPoint>& contour,
   return result;
 }
 
-int DropInteriorEdgeMatches(const std::vector<ContourPoint>& contour,
-                            const std::vector<ContourPoint>& interior,
-                            const QualityOptions& options, std::vector<double>* offsets) {
+int DropInteriorEdgeMatches(const std::vector<ContourPoint>& contour, const InteriorEdges& interior,
+                            std::vector<double>* offsets) {
   BCOT_CHECK(offsets != nullptr && offsets->size() == contour.size());
   int dropped = 0;
   for (size_t i = 0; i < contour.size(); ++i) {
     const double offset = (*offsets)[i];
     if (!std::isfinite(offset)) continue;
-    // The found step belongs to the nearest of the model's edges: an interior edge when one
-    // lies within interior_edge_px of it and nearer than the silhouette point itself (|offset|).
-    const Eigen::Vector2d found = contour[i].pixel + offset * contour[i].normal;
-    const double reach = std::min(options.interior_edge_px, std::abs(offset));
-    for (const ContourPoint& edge : interior) {
-      if ((edge.pixel - found).squaredNorm() < reach * reach) {
-        (*offsets)[i] = kNaN;
-        ++dropped;
-        break;
-      }
+    if (interior.Claims(contour[i].pixel, contour[i].pixel + offset * contour[i].normal)) {
+      (*offsets)[i] = kNaN;
+      ++dropped;
     }
   }
   return dropped;

@@ -14,8 +14,8 @@
 #include "bcot/quality/boundary_search.h"
 #include "bcot/quality/rigid_motion_fit.h"
 #include "bcot/render/crease_contour.h"
+#include "bcot/render/interior_edges.h"
 #include "bcot/render/mesh.h"
-#include "bcot/render/occlusion_contour.h"
 
 namespace bcot {
 namespace {
@@ -124,18 +124,10 @@ ViewFrameQuality MeasureFrameView(const RayCaster& caster, const Camera& camera,
     quality.ambiguous = refined.ambiguous;
   }
   if (options.interior_edges) {
-    CreaseContourOptions crease_options;
-    crease_options.min_angle_deg = options.crease_min_angle_deg;
-    // Every seen sample, however close to another edge, and dense enough that a found boundary
-    // on the crease lies within interior_edge_px of one.
-    crease_options.clear_px = 0.0;
-    crease_options.sample_spacing_px = options.interior_edge_px;
-    std::vector<ContourPoint> interior =
-        ExtractCreaseContour(caster, camera, cam_from_object, creases, crease_options);
-    const std::vector<ContourPoint> occlusion =
-        ExtractOcclusionContour(caster, camera, cam_from_object);
-    interior.insert(interior.end(), occlusion.begin(), occlusion.end());
-    quality.ambiguous += DropInteriorEdgeMatches(silhouette.contour, interior, options, &offsets);
+    const InteriorEdges interior =
+        ProjectInteriorEdges(caster, camera, cam_from_object, creases, options.crease_min_angle_deg,
+                             /*occlusion_contours=*/true, options.interior_edge_px);
+    quality.ambiguous += DropInteriorEdgeMatches(silhouette.contour, interior, &offsets);
   }
   for (double offset : offsets) quality.found += std::isfinite(offset) ? 1 : 0;
   quality.raw_median_px = AbsPercentile(offsets, 0.5);

@@ -32,9 +32,8 @@ TEST(DropInteriorEdgeMatchesTest, DropsOnlyBoundariesFoundOnAnInteriorEdgeOffThe
                        Eigen::Vector3d::Zero()};
     interior.push_back(point);
   }
-  QualityOptions options;  // interior_edge_px = 1
   std::vector<double> offsets = {-3.2, -0.4, 2.5, kNaN, -2.3, -1.6};
-  EXPECT_EQ(DropInteriorEdgeMatches(contour, interior, options, &offsets), 2);
+  EXPECT_EQ(DropInteriorEdgeMatches(contour, InteriorEdges(interior, 1.0), &offsets), 2);
   EXPECT_TRUE(std::isnan(offsets[0]));  // on the interior edge
   EXPECT_EQ(offsets[1], -0.4);          // at the silhouette
   EXPECT_EQ(offsets[2], 2.5);           // outside, on no interior edge

@@ -7,6 +7,7 @@
 
 #include "bcot/core/linear_rgb.h"
 #include "bcot/quality/quality_options.h"
+#include "bcot/render/interior_edges.h"
 #include "bcot/render/ray_caster.h"
 
 namespace bcot {
@@ -42,13 +43,11 @@ RefinedOffsets RefineOffsetsOnEdges(const std::vector<ContourPoint>& contour,
                                     const LinearTable& linear, const QualityOptions& options);
 
 // Step 4b (options.interior_edges): sets to NaN each finite offset whose boundary (contour
-// point + offset · normal) lies nearer to a point of `interior`, the model's interior edges
-// (creases, occlusion contours) projected at the same pose, than to its own contour point, and
-// within options.interior_edge_px of it; returns how many. Such a step is more likely that
-// edge than the silhouette, so the point cannot tell where the silhouette is.
-int DropInteriorEdgeMatches(const std::vector<ContourPoint>& contour,
-                            const std::vector<ContourPoint>& interior,
-                            const QualityOptions& options, std::vector<double>* offsets);
+// point + offset · normal) `interior` claims (InteriorEdges::Claims: within its tolerance of one
+// of the model's interior edges projected at the same pose, and nearer to it than to the
+// contour point); returns how many. Such a step is more likely that edge than the silhouette.
+int DropInteriorEdgeMatches(const std::vector<ContourPoint>& contour, const InteriorEdges& interior,
+                            std::vector<double>* offsets);
 
 // Median and 90th percentile of |values| ignoring NaN; NaN when none is finite.
 double AbsPercentile(const std::vector<double>& values, double fraction);
