@@ -85,10 +85,7 @@ OptionSchema<QualityOptions>* BuildQualityOptionSchema() {
   s->Add(
        "quality.crease_min_angle_deg", [](auto& o) -> auto& { return o.crease_min_angle_deg; },
        "deg", "an interior crease: an edge whose two faces' normals differ by more than this")
-      .Check([](const O& o) {
-        return o.crease_min_angle_deg > 0 && o.crease_min_angle_deg < 180 ? ""
-                                                                          : "must be in (0, 180)";
-      });
+      .Range(Open(0.0, 180.0));
   s->Add(
        "quality.bootstrap_resamples", [](auto& o) -> auto& { return o.bootstrap_resamples; }, "",
        "bootstrap resamples for the uncertainty of the statistic (0 = none)")

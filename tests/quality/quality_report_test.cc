@@ -307,6 +307,11 @@ TEST(QualityReportTest, OptionsRoundTripAndErrorsNameLineAndKey) {
   const Status kind =
       ParseQualityOptions(YAML::Load("quality:\n  color_kind: rgb\n")["quality"], "q.yaml", &bad);
   EXPECT_THAT(kind.message(), HasSubstr("'rgb' is not one of global | local"));
+  const Status interior = ParseQualityOptions(
+      YAML::Load("quality:\n  interior_edge_px: 0\n  crease_min_angle_deg: 180\n")["quality"],
+      "q.yaml", &bad);
+  EXPECT_THAT(interior.message(), HasSubstr("q.yaml:2: quality.interior_edge_px = 0"));
+  EXPECT_THAT(interior.message(), HasSubstr("q.yaml:3: quality.crease_min_angle_deg = 180"));
   const Status margin = ParseQualityOptions(
       YAML::Load("quality:\n  search_radius_px: 3\n  color_margin_px: 3\n")["quality"], "q.yaml",
       &bad);
