@@ -8,23 +8,37 @@
 
 namespace bcot {
 
+namespace {
+
+// Cells per side at the most: a tiny tolerance over a large image coarsens the grid instead of
+// allocating it (a query reads the cells within one of its own, which covers the reach as long
+// as a cell is at least the tolerance).
+constexpr double kMaxCellsPerSide = 1024.0;
+
+}  // namespace
+
 InteriorEdges::InteriorEdges(const std::vector<ContourPoint>& points, double tolerance_px)
     : tolerance_px_(tolerance_px) {
   BCOT_CHECK(tolerance_px > 0.0 && std::isfinite(tolerance_px));
-  if (points.empty()) return;
-  Eigen::Vector2d lower = points.front().pixel, upper = points.front().pixel;
+  points_.reserve(points.size());
   for (const ContourPoint& point : points) {
-    lower = lower.cwiseMin(point.pixel);
-    upper = upper.cwiseMax(point.pixel);
+    if (point.pixel.allFinite()) points_.push_back(point.pixel);
+  }
+  if (points_.empty()) return;
+  Eigen::Vector2d lower = points_.front(), upper = points_.front();
+  for (const Eigen::Vector2d& point : points_) {
+    lower = lower.cwiseMin(point);
+    upper = upper.cwiseMax(point);
   }
   origin_ = lower;
-  columns_ = static_cast<int>(std::floor((upper.x() - lower.x()) / tolerance_px)) + 1;
-  rows_ = static_cast<int>(std::floor((upper.y() - lower.y()) / tolerance_px)) + 1;
+  cell_px_ = std::max(tolerance_px, (upper - lower).maxCoeff() / kMaxCellsPerSide);
+  columns_ = static_cast<int>(std::floor((upper.x() - lower.x()) / cell_px_)) + 1;
+  rows_ = static_cast<int>(std::floor((upper.y() - lower.y()) / cell_px_)) + 1;
   // Counting sort of the samples by cell.
-  std::vector<int> cell_of(points.size());
+  std::vector<int> cell_of(points_.size());
   cell_start_.assign(static_cast<size_t>(columns_) * rows_ + 1, 0);
-  for (size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector2d cell = (points[i].pixel - origin_) / tolerance_px;
+  for (size_t i = 0; i < points_.size(); ++i) {
+    const Eigen::Vector2d cell = (points_[i] - origin_) / cell_px_;
     const int column = std::min(static_cast<int>(cell.x()), columns_ - 1);
     const int row = std::min(static_cast<int>(cell.y()), rows_ - 1);
     cell_of[i] = row * columns_ + column;
@@ -32,14 +46,20 @@ InteriorEdges::InteriorEdges(const std::vector<ContourPoint>& points, double tol
   }
   for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
   std::vector<int> next(cell_start_.begin(), cell_start_.end() - 1);
-  points_.resize(points.size());
-  for (size_t i = 0; i < points.size(); ++i) points_[next[cell_of[i]]++] = points[i].pixel;
+  std::vector<Eigen::Vector2d> sorted(points_.size());
+  for (size_t i = 0; i < points_.size(); ++i) sorted[next[cell_of[i]]++] = points_[i];
+  points_ = std::move(sorted);
 }
 
 bool InteriorEdges::Claims(const Eigen::Vector2d& silhouette, const Eigen::Vector2d& found) const {
-  if (points_.empty()) return false;
+  if (points_.empty() || !found.allFinite() || !silhouette.allFinite()) return false;
   const double reach = std::min(tolerance_px_, (found - silhouette).norm());
-  const Eigen::Vector2d cell = (found - origin_) / tolerance_px_;
+  const Eigen::Vector2d cell = (found - origin_) / cell_px_;
+  // More than a cell beyond the samples' box (cell coordinates [0, columns_) × [0, rows_)): no
+  // sample within the reach.
+  if (cell.x() < -1.0 || cell.y() < -1.0 || cell.x() > columns_ + 1.0 || cell.y() > rows_ + 1.0) {
+    return false;
+  }
   const int column = static_cast<int>(std::floor(cell.x()));
   const int row = static_cast<int>(std::floor(cell.y()));
   for (int r = std::max(row - 1, 0); r <= std::min(row + 1, rows_ - 1); ++r) {

@@ -41,6 +41,17 @@ TEST(InteriorEdgesTest, ClaimsAsABruteForceSearch) {
   }
 }
 
+// A tolerance far below the samples' spread coarsens the grid instead of allocating 10¹⁰ cells,
+// and answers the same.
+TEST(InteriorEdgesTest, ATinyToleranceOverAWideSpreadStaysExact) {
+  const std::vector<ContourPoint> points = {At(0.0, 0.0), At(5000.0, 3000.0), At(10.0, 10.0)};
+  const InteriorEdges edges(points, 1e-3);
+  EXPECT_TRUE(edges.Claims(Eigen::Vector2d(10.0, 20.0), Eigen::Vector2d(10.0005, 10.0)));
+  EXPECT_FALSE(edges.Claims(Eigen::Vector2d(10.0, 20.0), Eigen::Vector2d(10.002, 10.0)));
+  EXPECT_FALSE(edges.Claims(Eigen::Vector2d(0, 0), Eigen::Vector2d(1e12, -1e12)));
+  EXPECT_FALSE(edges.Claims(Eigen::Vector2d(0, 0), Eigen::Vector2d(std::nan(""), 0.0)));
+}
+
 TEST(InteriorEdgesTest, NothingIsClaimedWithoutEdges) {
   const InteriorEdges edges({}, 1.0);
   EXPECT_EQ(edges.size(), 0);

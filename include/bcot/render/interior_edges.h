@@ -27,7 +27,8 @@ namespace bcot {
 class InteriorEdges {
  public:
   // `points`: the interior edges' samples (pixels; spaced at most tolerance_px apart along
-  // each edge, so a step on the edge lies within tolerance_px / 2 of one); tolerance_px > 0.
+  // each edge, so a step on the edge lies within tolerance_px / 2 of one; non-finite ones are
+  // left out); tolerance_px > 0 and finite (CHECKed).
   InteriorEdges(const std::vector<ContourPoint>& points, double tolerance_px);
 
   // Whether the step found at `found` along the normal of silhouette point `silhouette` lies
@@ -38,9 +39,11 @@ class InteriorEdges {
 
  private:
   double tolerance_px_;
-  // Samples bucketed into square cells of side tolerance_px over their bounding box, so a query
-  // reads the 3×3 cells around it.
+  // Samples bucketed into square cells of side cell_px_ (tolerance_px, or more where the samples
+  // spread over more than 1,024 of them) over their bounding box, so a query reads the 3×3
+  // cells around it.
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  double cell_px_ = 1.0;
   int columns_ = 0, rows_ = 0;
   std::vector<int> cell_start_;  // cells' ranges in points_, size columns_·rows_ + 1
   std::vector<Eigen::Vector2d> points_;
