@@ -123,7 +123,9 @@ ViewFrameQuality MeasureFrameView(const RayCaster& caster, const Camera& camera,
     sigmas = std::move(refined.sigmas_px);
     quality.ambiguous = refined.ambiguous;
   }
-  if (options.interior_edges) {
+  // The interior edges (a depth render and ray casts) only matter where a boundary was found.
+  if (options.interior_edges &&
+      std::any_of(offsets.begin(), offsets.end(), [](double o) { return std::isfinite(o); })) {
     const InteriorEdges interior =
         ProjectInteriorEdges(caster, camera, cam_from_object, creases, options.crease_min_angle_deg,
                              /*occlusion_contours=*/true, options.interior_edge_px);

@@ -53,9 +53,9 @@ struct QualityOptions {
   // Step 4b: the model's interior edges at the pose under test (its creases sharper than
   // crease_min_angle_deg and its occlusion contours) are steps in the image of their own. A
   // boundary found nearer to such an edge than to its contour point is more likely that edge
-  // than the silhouette (the rim of a
-  // flange a few px inside a spool's silhouette whose side has no contrast against the
-  // background), so it is dropped as ambiguous (DropInteriorEdgeMatches).
+  // than the silhouette (the rim of a flange a few px inside a spool's silhouette whose side
+  // has no contrast against the background), so it is dropped as ambiguous
+  // (DropInteriorEdgeMatches).
   bool interior_edges = true;
   // A found boundary is taken for an interior edge within this distance of it (px), when it
   // lies nearer to that edge than to its own contour point; > 0.
