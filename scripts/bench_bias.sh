@@ -21,12 +21,9 @@ cd "$(dirname "$0")/.."
 frames=${1:-20}
 config=${2:-configs/annotate.yaml}
 work=${BCOT_BENCH_WORK:-out/bench_bias}
-dir=${BCOT_BENCH_BUILD:-build-bench}
-if [ ! -f "$dir/CMakeCache.txt" ]; then
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
-    -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
-fi
-cmake --build "$dir" --target bias_bench >/dev/null
+source scripts/bench_lib.sh
+bench_build bias_bench
+dir=$BENCH_DIR
 bench="$dir/tests/bench/bias_bench"
 mkdir -p "$work"
 

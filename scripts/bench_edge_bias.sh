@@ -8,12 +8,9 @@
 # configured here), BCOT_BENCH_WORK (default out/bench_edge_bias).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-dir=${BCOT_BENCH_BUILD:-build-bench}
-if [ -z "${BCOT_BENCH_BUILD:-}" ]; then
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
-    -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
-fi
-cmake --build "$dir" --target bcot edge_bias_probe >/dev/null
+source scripts/bench_lib.sh
+bench_build bcot edge_bias_probe
+dir=$BENCH_DIR
 work=${BCOT_BENCH_WORK:-out/bench_edge_bias}
 if [ ! -f "$work/demo/rig.yaml" ]; then
   "$dir/bcot" synth --quiet --config configs/synth/demo.yaml --out "$work/demo" \

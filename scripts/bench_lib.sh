@@ -17,3 +17,15 @@ run_google_benchmark() {
 bench_summary() {
   PYTHONPATH=scripts python3 - "build-bench/$1.json"
 }
+
+# bench_build TARGET...: builds the targets (quietly) in BENCH_DIR, which it sets: an existing
+# Release build given by BCOT_BENCH_BUILD (configured with -DBCOT_BUILD_BENCHMARKS=ON; used as it
+# is), else build-bench/, configured here (Release, benchmarks on, no tests).
+bench_build() {
+  BENCH_DIR=${BCOT_BENCH_BUILD:-build-bench}
+  if [ -z "${BCOT_BENCH_BUILD:-}" ]; then
+    cmake -S . -B "$BENCH_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
+      -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
+  fi
+  cmake --build "$BENCH_DIR" --target "$@" >/dev/null
+}

@@ -3,7 +3,8 @@
 #   scripts/bench_pbr.sh [SPEC.json ...]
 # Default: the bench scenes of configs/pbr/ (bunny plastic, spool dark + JPEG, pinion metal
 # with a moving key light + JPEG, large bright bunny in soft light + JPEG, small glossy and small
-# diffuse bunny turning fast + JPEG, bunny turning 5–8° per frame with motion blur + JPEG) and
+# diffuse bunny turning fast + JPEG, bunny turning 5–8° per frame with motion blur + JPEG, the
+# plastic bunny with a thumb-sized occluder sweeping across it in cam0) and
 # the control bunny_plastic_light_below (the key light from below).
 # For each scene spec: renders the sequence with scripts/pbr_synth.sh into out/pbr/<name>-<hash>
 # (hash of the resolved spec and the generator's scripts; an existing render is reused), checks
@@ -27,7 +28,8 @@ if [ ${#specs[@]} -eq 0 ]; then
   specs=(configs/pbr/bunny_plastic.json configs/pbr/spool_dark.json
          configs/pbr/pinion_metal_moving_light.json configs/pbr/bunny_bright_soft.json
          configs/pbr/bunny_plastic_light_below.json configs/pbr/bunny_small_glossy_fast.json
-         configs/pbr/bunny_small_diffuse_fast.json configs/pbr/bunny_fast_blur.json)
+         configs/pbr/bunny_small_diffuse_fast.json configs/pbr/bunny_fast_blur.json
+         configs/pbr/bunny_hand_occluder.json)
 fi
 py=/usr/bin/python3
 nice cmake --build build -j1 --target bcot pbr_errors pbr_gt_check >/dev/null

@@ -27,12 +27,9 @@ cd "$(dirname "$0")/.."
 frames=${1:-100}
 energy_frames=${2:-40}
 work=${BCOT_BENCH_WORK:-out/bench_precision}
-dir=${BCOT_BENCH_BUILD:-build-bench}
-if [ ! -f "$dir/CMakeCache.txt" ]; then
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
-    -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
-fi
-cmake --build "$dir" --target precision_bench
+source scripts/bench_lib.sh
+bench_build precision_bench
+dir=$BENCH_DIR
 bench="$dir/tests/bench/precision_bench"
 sets=()
 for s in ${BCOT_BENCH_SET:-}; do sets+=(--set "$s"); done

@@ -34,12 +34,9 @@ while [ $# -gt 0 ]; do
   esac
 done
 work=${BCOT_BENCH_WORK:-out/bench_quality}
-dir=${BCOT_BENCH_BUILD:-build-bench}
-if [ -z "${BCOT_BENCH_BUILD:-}" ]; then
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
-    -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
-fi
-cmake --build "$dir" --target bcot quality_bench >/dev/null
+source scripts/bench_lib.sh
+bench_build bcot quality_bench
+dir=$BENCH_DIR
 mkdir -p "$work"
 names=() seqs=() extra=()
 for name in demo glossy_fast; do

@@ -20,12 +20,9 @@ frames=${1:-60}
 jobs=${2:-2}
 config=${3:-configs/annotate.yaml}
 work=${BCOT_BENCH_WORK:-out/bench_throughput}
-dir=${BCOT_BENCH_BUILD:-build-bench}
-if [ ! -f "$dir/CMakeCache.txt" ]; then
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
-    -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
-fi
-cmake --build "$dir" --target bcot >/dev/null
+source scripts/bench_lib.sh
+bench_build bcot
+dir=$BENCH_DIR
 bcot="$dir/bcot"
 
 seq_root="$work/seq_${frames}f"

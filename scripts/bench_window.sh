@@ -30,12 +30,9 @@ cd "$(dirname "$0")/.."
 frames=${1:-60}
 config=${2:-configs/annotate.yaml}
 work=${BCOT_BENCH_WORK:-out/bench_window}
-dir=${BCOT_BENCH_BUILD:-build-bench}
-if [ ! -f "$dir/CMakeCache.txt" ]; then
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBCOT_BUILD_TESTS=OFF \
-    -DBCOT_BUILD_BENCHMARKS=ON >/dev/null
-fi
-cmake --build "$dir" --target bcot window_bench >/dev/null
+source scripts/bench_lib.sh
+bench_build bcot window_bench
+dir=$BENCH_DIR
 bcot="$dir/bcot"
 bench="$dir/tests/bench/window_bench"
 step=$((frames / 2))

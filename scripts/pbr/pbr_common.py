@@ -65,7 +65,10 @@ DEFAULTS = {
         "clutter": 10,
         "distractors": True,          # one per camera, same material, touching in its image
         "distractor_overlap": 0.15,   # fraction of the distractor's image radius behind the object
-        "occluder": False,            # a finger-like capsule in front of the object
+        "occluder": False,            # a finger-like capsule in front of the object (cam0)
+        "occluder_radius_mm": 9.0,    # its radius: 9 a finger, 20-25 two fingers or a thumb's base
+        "occluder_length_mm": 80.0,
+        "occluder_drop_mm": 55.0,     # how far below the object's centre it passes (cam0's image)
     },
     "render": {
         # The beauty pass is rendered at `samples` in a window around the object and its
@@ -134,6 +137,10 @@ def load_spec(path, overrides=()):
     angle = spec["object"]["smooth_angle_deg"]
     if not isinstance(angle, (int, float)) or not 0.0 < angle <= 180.0:
         raise ValueError(f"{path}: object.smooth_angle_deg = {angle}, must be in (0, 180]")
+    for key in ("occluder_radius_mm", "occluder_length_mm"):
+        value = spec["scene"][key]
+        if not isinstance(value, (int, float)) or value <= 0.0:
+            raise ValueError(f"{path}: scene.{key} = {value}, must be > 0")
     base = os.path.dirname(os.path.abspath(path))
     mesh = spec["object"]["mesh"]
     spec["object"]["mesh_path"] = mesh if os.path.isabs(mesh) else os.path.normpath(
@@ -415,9 +422,11 @@ def make_plan(spec):
         for k in range(n):
             pc = c["cam_from_rig"][:3, :3] @ centre[k] + c["cam_from_rig"][:3, 3]
             s = -1.0 + 2.0 * k / max(n - 1, 1)
-            p_cam = pc + np.array([s * 80.0, 55.0, -160.0])
+            p_cam = pc + np.array([s * 80.0, float(spec["scene"]["occluder_drop_mm"]), -160.0])
             positions.append((c["world_from_cam"][:3, :3] @ p_cam + c["world_from_cam"][:3, 3]).tolist())
-        occluder = {"positions_mm": positions, "radius_mm": 9.0, "length_mm": 80.0}
+        occluder = {"positions_mm": positions,
+                    "radius_mm": float(spec["scene"]["occluder_radius_mm"]),
+                    "length_mm": float(spec["scene"]["occluder_length_mm"])}
 
     return {
         "frames": n, "fps": float(spec["fps"]),

@@ -432,6 +432,15 @@ void DeclareViewsAndWindow(OptionSchema<AnnotateOptions>* s) {
             v.weights.size(), v.cameras.size());
       });
   s->Add(
+      "symmetry.detect", [](auto& o) -> auto& { return o.symmetry.detect; }, "",
+      "find whether the mesh is a body of revolution; if so, the angle about its axis (which no "
+      "image observes) is kept where tracking starts");
+  s->Add(
+       "symmetry.tolerance", [](auto& o) -> auto& { return o.symmetry.detection.tolerance; }, "",
+       "largest mean silhouette change under a turn about the axis, as a fraction of the "
+       "object's diameter, that still counts as symmetric")
+      .Range(Open(0, 0.1));
+  s->Add(
       "window.enabled", [](auto& o) -> auto& { return o.window.enabled; }, "",
       "refine the per-frame poses in sliding temporal windows");
   s->Add(
@@ -524,7 +533,8 @@ OptionSchema<AnnotateOptions>* BuildAnnotateOptionSchema() {
 // The optim layer's own checks, after the declared rules (which name locations): a rule added
 // there but not declared here still stops a bad config, naming `source_name`.
 Status LayerChecks(const AnnotateOptions& options, const std::string& source_name) {
-  for (const Status& status : {options.tracker.Validate(), options.window.Validate()}) {
+  for (const Status& status : {options.tracker.Validate(), options.window.Validate(),
+                               options.symmetry.detection.Validate()}) {
     if (!status.ok()) return Status::InvalidConfig(source_name + ": " + status.message());
   }
   return Status::Ok();

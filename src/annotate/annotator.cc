@@ -73,6 +73,13 @@ Status CheckAnchorPose(const Eigen::Isometry3d& rig_from_object, const std::stri
       "{}: the object is not in view at frame {}: its centre is {}", source, frame, places));
 }
 
+// The mesh's rotational symmetry in O_t when options.symmetry asks for it and it has one.
+StatusOr<std::optional<RotationalSymmetry>> ObjectSymmetry(const RayCaster& caster,
+                                                           const AnnotateOptions& options) {
+  if (!options.symmetry.detect) return std::optional<RotationalSymmetry>();
+  return DetectRotationalSymmetry(caster, options.symmetry.detection);
+}
+
 // Frames before and after a re-annotated span whose existing poses the window holds as its
 // context: a window's size (the whole sequence for size 0), at least the priors' reach.
 int WindowMargin(const WindowProblemOptions& window, int num_frames) {
@@ -297,8 +304,11 @@ StatusOr<RefinedFrame> RefineFrame(const Sequence& sequence, const RayCaster& ca
                         SelectViews(sequence, options, &rig_indices));
   BCOT_ASSIGN_OR_RETURN(std::vector<cv::Mat3b> images,
                         ReadFrameImages(sequence, rig_indices, views, frame, nullptr));
-  BCOT_ASSIGN_OR_RETURN(std::unique_ptr<MultiViewTracker> tracker,
-                        MultiViewTracker::Create(caster, std::move(views), options.tracker));
+  BCOT_ASSIGN_OR_RETURN(const std::optional<RotationalSymmetry> symmetry,
+                        ObjectSymmetry(caster, options));
+  BCOT_ASSIGN_OR_RETURN(
+      std::unique_ptr<MultiViewTracker> tracker,
+      MultiViewTracker::Create(caster, std::move(views), options.tracker, symmetry));
   const Eigen::Isometry3d objcentre_from_template = caster.mesh().objcentre_from_template();
   Eigen::Isometry3d rig_from_objcentre = rig_from_object * objcentre_from_template.inverse();
   RefinedFrame refined;
@@ -334,6 +344,15 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
   if (!existing.empty() && span.first > 0 && anchors.count(span.first) == 0) {
     anchors[span.first - 1] = existing[span.first - 1];
   }
+  BCOT_ASSIGN_OR_RETURN(const std::optional<RotationalSymmetry> symmetry,
+                        ObjectSymmetry(caster, options));
+  if (symmetry.has_value()) {
+    // Each anchor (a hand-set pose has its own angle about the axis) turned about the axis to
+    // the angle nearest the one before it, so that every tracking segment keeps one angle.
+    for (auto it = anchors.begin(); it != anchors.end() && std::next(it) != anchors.end(); ++it) {
+      std::next(it)->second = symmetry->HoldAngle(std::next(it)->second, it->second);
+    }
+  }
   if (anchors.empty()) {
     return Status::NotFound(fmt::format(
         "{}: no pose to start tracking from in frames {}:{} (init_pose.txt for frame 0, a "
@@ -341,14 +360,23 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
         sequence.dir, span.first, span.end - 1));
   }
   StatusOr<std::unique_ptr<MultiViewTracker>> tracker =
-      MultiViewTracker::Create(caster, *views, options.tracker);
+      MultiViewTracker::Create(caster, *views, options.tracker, symmetry);
   if (!tracker.ok()) return tracker.status();
 
   SequenceAnnotation annotation;
+  annotation.symmetry = symmetry;
   annotation.first_frame = span.first;
   for (const TrackedView& view : *views) annotation.view_names.push_back(view.camera.name);
   const Eigen::Isometry3d objcentre_from_template = mesh.objcentre_from_template();
   const Eigen::Isometry3d template_from_objcentre = objcentre_from_template.inverse();
+  std::optional<RotationalSymmetry> symmetry_in_objcentre;
+  if (symmetry.has_value()) symmetry_in_objcentre = symmetry->Transformed(objcentre_from_template);
+  // A pose turned about the symmetry axis to the angle nearest `reference` (both
+  // rig_from_objcentre); unchanged for an asymmetric object.
+  const auto hold_angle = [&](const Eigen::Isometry3d& pose, const Eigen::Isometry3d& reference) {
+    return symmetry_in_objcentre.has_value() ? symmetry_in_objcentre->HoldAngle(pose, reference)
+                                             : pose;
+  };
   // The window sees frames [window_first, window_end): the span and, around it, the existing
   // poses its priors reach, held constant (no templates).
   const int margin = existing.empty() ? 0 : WindowMargin(options.window, sequence.num_frames);
@@ -361,10 +389,10 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
     }
   };
   if (options.window.enabled) {
-    window = std::make_unique<WindowSmoother>(options.window);
+    window = std::make_unique<WindowSmoother>(options.window, symmetry_in_objcentre);
     std::map<int, Eigen::Isometry3d> keyframe_anchors;
-    for (const auto& [frame, rig_from_object] : sequence.keyframes) {
-      if (frame >= span.first && frame < span.end) {
+    for (const auto& [frame, rig_from_object] : anchors) {
+      if (sequence.keyframes.count(frame) != 0 && frame >= span.first && frame < span.end) {
         keyframe_anchors[frame - window_first] = rig_from_object * template_from_objcentre;
       }
     }
@@ -425,22 +453,22 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
   };
   const auto choose = [&](int frame, Solved nearer, const OtherSolve& other) -> StatusOr<Solved> {
     if (!other.usable) return nearer;
+    const Eigen::Isometry3d other_pose =
+        hold_angle(other.rig_from_objcentre, nearer.rig_from_objcentre);
     const bool agree =
         nearer.record.summary.usable() &&
-        RotationDistanceDeg(nearer.rig_from_objcentre.linear(),
-                            other.rig_from_objcentre.linear()) <= kAgreeDeg &&
-        (nearer.rig_from_objcentre.translation() - other.rig_from_objcentre.translation()).norm() <=
-            agree_mm;
+        RotationDistanceDeg(nearer.rig_from_objcentre.linear(), other_pose.linear()) <= kAgreeDeg &&
+        (nearer.rig_from_objcentre.translation() - other_pose.translation()).norm() <= agree_mm;
     if (agree) return nearer;
     BCOT_ASSIGN_OR_RETURN(const std::vector<cv::Mat3b> images, read_images(frame));
     const PoseScorer scorer(caster, view_rig, images, PoseScorerOptions());
     const double nearer_score = nearer.record.summary.usable()
                                     ? scorer.Score(nearer.rig_from_objcentre)
                                     : std::numeric_limits<double>::infinity();
-    if (!(scorer.Score(other.rig_from_objcentre) < nearer_score)) return nearer;
+    if (!(scorer.Score(other_pose) < nearer_score)) return nearer;
     // The frame is solved again from the other pose, so that its record and templates are a
     // solve's (the tracker restarts there, as at an anchor).
-    Eigen::Isometry3d rig_from_objcentre = other.rig_from_objcentre;
+    Eigen::Isometry3d rig_from_objcentre = other_pose;
     return solve(frame, /*initialize=*/true, &rig_from_objcentre);
   };
 
@@ -470,7 +498,10 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
           forward_other[frame - mid] = {solved.rig_from_objcentre, solved.record.summary.usable()};
         }
       }
-      rig_from_objcentre = anchors.at(b) * template_from_objcentre;
+      // Anchor b at the angle about a symmetry axis the forward pass arrived with (frame b − 1),
+      // also for the segment that starts at b.
+      rig_from_objcentre = hold_angle(anchors.at(b) * template_from_objcentre, rig_from_objcentre);
+      anchors[b] = rig_from_objcentre * objcentre_from_template;
       BCOT_RETURN_IF_ERROR(solve(b, true, &rig_from_objcentre).status());
       std::vector<Solved> backward(b - mid);
       std::vector<OtherSolve> backward_other(mid - a);  // frame a has none: it is the anchor
@@ -514,9 +545,14 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
   if (window) {
     push_held(span.end, window_end);
     window->Finish();
+    Eigen::Isometry3d previous_smoothed = Eigen::Isometry3d::Identity();  // rig_from_objcentre
     for (int i = 0; i < span_frames; ++i) {
-      const Eigen::Isometry3d smoothed =
-          window->rig_from_objcentre()[span.first + i - window_first] * objcentre_from_template;
+      // For a body of revolution, each frame turned about the axis to the angle nearest the
+      // frame before it (the first: nearest its per-frame pose), as the tracker holds it.
+      previous_smoothed = hold_angle(
+          window->rig_from_objcentre()[span.first + i - window_first],
+          i == 0 ? annotation.rig_from_object[0] * template_from_objcentre : previous_smoothed);
+      const Eigen::Isometry3d smoothed = previous_smoothed * objcentre_from_template;
       AnnotatedFrame& record = annotation.frames[i];
       record.window_rotation_deg =
           RotationDistanceDeg(annotation.rig_from_object[i].linear(), smoothed.linear());
@@ -610,7 +646,20 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
       FinishAnnotation(out_dir, sequence, caster, options, input_hash, annotation.rig_from_object,
                        std::move(quality), annotation.failed_frames));
   outcome.notes = CaptureNotes(sequence);
+  if (annotation.symmetry.has_value()) outcome.notes.push_back(SymmetryNote(*annotation.symmetry));
   return outcome;
+}
+
+std::string SymmetryNote(const RotationalSymmetry& symmetry) {
+  const Eigen::Vector3d& a = symmetry.axis;
+  const Eigen::Vector3d& p = symmetry.point;
+  return fmt::format(
+      "the object is a body of revolution about the axis ({:.3f}, {:.3f}, {:.3f}) through "
+      "({:.2f}, {:.2f}, {:.2f}) mm of its mesh frame: no image shows its angle about that axis, "
+      "so the poses keep the angle of the first pose (init_pose.txt or a keyframe); set "
+      "symmetry.detect: false if its texture makes the angle visible (docs/method.md, "
+      "\"Symmetric objects\")",
+      a.x(), a.y(), a.z(), p.x(), p.y(), p.z());
 }
 
 std::vector<std::string> CaptureNotes(const Sequence& sequence) {

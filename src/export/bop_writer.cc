@@ -11,6 +11,7 @@
 #include "bcot/core/file_util.h"
 #include "bcot/core/version.h"
 #include "bcot/render/mesh_writer.h"
+#include "bcot/render/symmetry_detection.h"
 #include "export_plan.h"
 
 namespace bcot {
@@ -98,15 +99,22 @@ double MaxVertexDistance(const std::vector<Eigen::Vector3f>& vertices) {
 }
 
 Json ModelInfoJson(const BopModelInfo& info) {
-  return Json{{"diameter", info.diameter}, {"min_x", info.min.x()},   {"min_y", info.min.y()},
-              {"min_z", info.min.z()},     {"size_x", info.size.x()}, {"size_y", info.size.y()},
-              {"size_z", info.size.z()}};
+  Json json{{"diameter", info.diameter}, {"min_x", info.min.x()},   {"min_y", info.min.y()},
+            {"min_z", info.min.z()},     {"size_x", info.size.x()}, {"size_y", info.size.y()},
+            {"size_z", info.size.z()}};
+  if (info.symmetry.has_value()) {
+    const Eigen::Vector3d& a = info.symmetry->axis;
+    const Eigen::Vector3d& p = info.symmetry->point;
+    json["symmetries_continuous"] =
+        Json::array({Json{{"axis", {a.x(), a.y(), a.z()}}, {"offset", {p.x(), p.y(), p.z()}}}});
+  }
+  return json;
 }
 
 // models/obj_<OBJ>.ply (the mesh in BOP's model frame) and its entry in models_info.json,
 // keeping the entries of other objects.
-Status WriteModel(const fs::path& models_dir, int obj_id, const Mesh& model, bool overwrite,
-                  std::string* model_path) {
+Status WriteModel(const fs::path& models_dir, int obj_id, const Mesh& model,
+                  bool symmetries_continuous, bool overwrite, std::string* model_path) {
   *model_path = (models_dir / fmt::format("obj_{:06d}.ply", obj_id)).string();
   const std::string ply = FormatPlyMesh(
       model, fmt::format("written by bcot export (bcot {}), units mm, origin at the "
@@ -131,7 +139,12 @@ Status WriteModel(const fs::path& models_dir, int obj_id, const Mesh& model, boo
       return Status::InvalidInput(info_path + ": not a JSON object (BOP models_info.json)");
     }
   }
-  infos[std::to_string(obj_id)] = ModelInfoJson(ComputeBopModelInfo(model));
+  BopModelInfo info = ComputeBopModelInfo(model);
+  if (symmetries_continuous) {
+    BCOT_ASSIGN_OR_RETURN(info.symmetry,
+                          DetectRotationalSymmetry(RayCaster(model), SymmetryDetectionOptions()));
+  }
+  infos[std::to_string(obj_id)] = ModelInfoJson(info);
   return WriteFileAtomic(info_path, infos.dump(2) + "\n");
 }
 
@@ -258,9 +271,9 @@ StatusOr<ExportSummary> ExportToBop(const std::string& sequence_dir,
       fs::path(out_root) / options.bop.split / fmt::format("{:06d}", options.bop.scene_id);
   BCOT_RETURN_IF_ERROR(export_internal::PrepareEmptyFolder(scene_dir, options.overwrite));
   ExportSummary summary = export_internal::SummarizePlan(plan, options);
-  BCOT_RETURN_IF_ERROR(WriteModel(fs::path(out_root) / "models", options.bop.obj_id,
-                                  mesh.Transformed(objcentre_from_template), options.overwrite,
-                                  &summary.model_path));
+  BCOT_RETURN_IF_ERROR(WriteModel(
+      fs::path(out_root) / "models", options.bop.obj_id, mesh.Transformed(objcentre_from_template),
+      options.bop.symmetries_continuous, options.overwrite, &summary.model_path));
   for (const CameraPlan& camera : plan.cameras) {
     const std::string suffix = suffixed ? "_" + camera.camera.name : "";
     CameraFiles files;

@@ -99,6 +99,9 @@ OptionSchema<ExportOptions>* BuildExportOptionSchema() {
        "bop.obj_id", [](auto& o) -> auto& { return o.bop.obj_id; }, "",
        "bop: object id, models/obj_<6 digits>.ply")
       .Range(Closed(1, 999999));
+  s->Add(
+      "bop.symmetries_continuous", [](auto& o) -> auto& { return o.bop.symmetries_continuous; }, "",
+      "bop: list a body of revolution's axis in models_info.json (symmetries_continuous)");
   return s;
 }
 

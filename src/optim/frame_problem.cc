@@ -241,10 +241,15 @@ ceres::LossFunction* EdgeLoss(const EdgeRefineOptions& edge) {
 constexpr double kPosteriorViewScale = 3.0;
 constexpr double kPosteriorLineSpacingPx = 3.5;
 
+//
+// For a body of revolution (`symmetry`, O_o) no line observes the turn about its axis, so H is
+// singular there. The solves never move along that direction (AxisLockedSe3Manifold), and the
+// window's neither; H gets the information of the mean of its eigenvalues along it, so that it
+// can be inverted, which changes nothing in the directions the window estimates.
 std::shared_ptr<const PoseGaussian> EdgePosterior(
     const std::vector<std::pair<int, std::shared_ptr<const CorrespondenceLines>>>& measured,
     const std::vector<FrameView>& views, const EdgeRefineOptions& edge,
-    const Eigen::Isometry3d& pose) {
+    const Eigen::Isometry3d& pose, const std::optional<RotationalSymmetry>& symmetry) {
   PoseParameters x = ToPoseParameters(pose);
   ceres::Problem problem;
   std::vector<int> view_of_row;  // index into `measured`
@@ -297,6 +302,10 @@ std::shared_ptr<const PoseGaussian> EdgePosterior(
   if (!(num_rows > kPoseTangentSize)) return nullptr;
   const double variance_factor = discounted_cost / (num_rows - kPoseTangentSize);
   if (variance_factor > 1.0) information /= variance_factor;
+  if (symmetry.has_value()) {
+    const Vector6d twist = symmetry->Twist().normalized();
+    information += information.trace() / kPoseTangentSize * twist * twist.transpose();
+  }
   auto gaussian = std::make_shared<PoseGaussian>();
   gaussian->mean = pose;
   if (!SqrtInformation(information, &gaussian->sqrt_information)) return nullptr;
@@ -478,8 +487,12 @@ bool RecordRoundMotion(const FrameProblemOptions& options, const Eigen::Isometry
 
 }  // namespace
 
-FrameProblem::FrameProblem(const RayCaster& caster, const FrameProblemOptions& options)
+FrameProblem::FrameProblem(const RayCaster& caster, const FrameProblemOptions& options,
+                           const std::optional<RotationalSymmetry>& symmetry)
     : caster_(caster), options_(options) {
+  if (symmetry.has_value()) {
+    symmetry_in_objcentre_ = symmetry->Transformed(caster_.mesh().objcentre_from_template());
+  }
   const Status status = options_.Validate();
   BCOT_CHECK(status.ok());
   BCOT_CHECK(options_.edge.lines.response.IsResolved());
@@ -548,7 +561,7 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
     }
     if (step.round == 0) summary.initial_energy = TotalEnergy(templates, x.data());
     AddDamping(options_, templates, linearisation_pose, x.data(), &problem);
-    problem.SetManifold(x.data(), new Se3Manifold());
+    problem.SetManifold(x.data(), NewPoseManifold(symmetry_in_objcentre_).release());
 
     const ceres::Solver::Summary ceres_summary =
         SolvePose(options_.iterations, options_.num_threads, &problem);
@@ -648,7 +661,7 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
       measured.emplace_back(static_cast<int>(v), shared);
     }
     if (total_lines < edge.min_lines) return false;
-    problem.SetManifold(parameters, new Se3Manifold());
+    problem.SetManifold(parameters, NewPoseManifold(symmetry_in_objcentre_).release());
     const ceres::Solver::Summary ceres_summary =
         SolvePose(edge.iterations, options_.num_threads, &problem);
     summary->iterations += static_cast<int>(ceres_summary.iterations.size()) - 1;
@@ -658,7 +671,8 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
       summary->views[v].edge_lines = static_cast<int>(lines->lines.size());
     }
     const Eigen::Isometry3d round_end = FromPoseParameters(parameters);
-    if (posterior != nullptr) *posterior = EdgePosterior(measured, views, edge, round_end);
+    if (posterior != nullptr)
+      *posterior = EdgePosterior(measured, views, edge, round_end, symmetry_in_objcentre_);
     const double moved_deg = RotationDistanceDeg(linearisation_pose.linear(), round_end.linear());
     const double moved_mm = (round_end.translation() - linearisation_pose.translation()).norm();
     if (moved_deg < options_.round_tolerance_deg && moved_mm < options_.round_tolerance_mm) break;

@@ -41,8 +41,8 @@ Status MultiViewTrackerOptions::Validate() const {
 }
 
 StatusOr<std::unique_ptr<MultiViewTracker>> MultiViewTracker::Create(
-    const RayCaster& caster, std::vector<TrackedView> views,
-    const MultiViewTrackerOptions& options) {
+    const RayCaster& caster, std::vector<TrackedView> views, const MultiViewTrackerOptions& options,
+    const std::optional<RotationalSymmetry>& symmetry) {
   BCOT_RETURN_IF_ERROR(options.Validate());
   if (views.empty()) return Status::InvalidConfig("tracker: no view to track in");
   for (const TrackedView& view : views) {
@@ -52,7 +52,8 @@ StatusOr<std::unique_ptr<MultiViewTracker>> MultiViewTracker::Create(
                                                view.camera.name, view.weight));
     }
   }
-  return std::unique_ptr<MultiViewTracker>(new MultiViewTracker(caster, std::move(views), options));
+  return std::unique_ptr<MultiViewTracker>(
+      new MultiViewTracker(caster, std::move(views), options, symmetry));
 }
 
 namespace {
@@ -73,8 +74,9 @@ ImageResponse InitialImageResponse(const MultiViewTrackerOptions& options) {
 }  // namespace
 
 MultiViewTracker::MultiViewTracker(const RayCaster& caster, std::vector<TrackedView> views,
-                                   const MultiViewTrackerOptions& options)
-    : caster_(caster), views_(std::move(views)), options_(options) {
+                                   const MultiViewTrackerOptions& options,
+                                   const std::optional<RotationalSymmetry>& symmetry)
+    : caster_(caster), views_(std::move(views)), options_(options), symmetry_(symmetry) {
   UseImageResponse(InitialImageResponse(options));
   color_models_.resize(views_.size());
   refine_color_models_.resize(views_.size());
@@ -85,8 +87,9 @@ void MultiViewTracker::UseImageResponse(const ImageResponse& response) {
   image_response_ = response;
   MultiViewTrackerOptions resolved = options_;
   resolved.frame.edge.lines.response = response;
-  problem_ = std::make_unique<FrameProblem>(caster_, resolved.frame);
-  bootstrap_problem_ = std::make_unique<FrameProblem>(caster_, BootstrapFrameOptions(resolved));
+  problem_ = std::make_unique<FrameProblem>(caster_, resolved.frame, symmetry_);
+  bootstrap_problem_ =
+      std::make_unique<FrameProblem>(caster_, BootstrapFrameOptions(resolved), symmetry_);
 }
 
 void MultiViewTracker::ResetColorModels(size_t view) {
@@ -151,6 +154,13 @@ FrameSummary MultiViewTracker::Solve(const FrameProblem& problem,
   return problem.Solve(FrameViews(images, refine), rig_from_objcentre, linearisations);
 }
 
+void MultiViewTracker::HoldSymmetryAngle(const Eigen::Isometry3d& reference,
+                                         Eigen::Isometry3d* rig_from_objcentre) const {
+  if (!symmetry_.has_value()) return;
+  *rig_from_objcentre = symmetry_->Transformed(caster_.mesh().objcentre_from_template())
+                            .HoldAngle(*rig_from_objcentre, reference);
+}
+
 bool MultiViewTracker::ResolveImageResponse(const std::vector<cv::Mat3b>& images,
                                             const Eigen::Isometry3d& rig_from_objcentre) {
   if (options_.frame.edge.lines.response.IsResolved() || !options_.frame.edge.enabled ||
@@ -180,6 +190,7 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
     std::vector<ViewLinearisation>* linearisations) {
   BCOT_CHECK(rig_from_objcentre != nullptr);
   BCOT_RETURN_IF_ERROR(CheckImages(images));
+  const Eigen::Isometry3d start = *rig_from_objcentre;
   FrameSummary summary;
   const bool has_refinement_models = refine_color_models_.front() != nullptr;
   for (int pass = 0; pass < options_.bootstrap_passes; ++pass) {
@@ -207,6 +218,7 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
     summary = Solve(*bootstrap_problem_, images, rig_from_objcentre, linearisations,
                     /*refine=*/has_refinement_models);
   }
+  if (summary.usable()) HoldSymmetryAngle(start, rig_from_objcentre);
   previous_rig_from_objcentre_.reset();
   return summary;
 }
@@ -224,6 +236,7 @@ StatusOr<FrameSummary> MultiViewTracker::Track(const std::vector<cv::Mat3b>& ima
   FrameSummary summary =
       Solve(*problem_, images, rig_from_objcentre, linearisations, /*refine=*/true);
   if (summary.usable()) {
+    HoldSymmetryAngle(last, rig_from_objcentre);
     LearnColors(images, *rig_from_objcentre, /*fresh=*/false);
     previous_rig_from_objcentre_ = last;
   } else {

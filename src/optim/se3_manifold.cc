@@ -1,5 +1,7 @@
 #include "bcot/optim/se3_manifold.h"
 
+#include <Eigen/QR>
+
 namespace bcot {
 namespace {
 
@@ -114,6 +116,53 @@ bool EvaluatePoseResiduals(const ceres::CostFunction& cost, const double* pose_p
   residuals->assign(cost.num_residuals(), 0.0);
   const double* parameters[] = {pose_parameters};
   return cost.Evaluate(parameters, residuals->data(), nullptr);
+}
+
+AxisLockedSe3Manifold::AxisLockedSe3Manifold(const RotationalSymmetry& symmetry) {
+  // U: the last two columns of a Householder QR of a (orthonormal, orthogonal to a).
+  const Eigen::HouseholderQR<Eigen::Vector3d> qr(symmetry.axis.normalized());
+  const Eigen::Matrix3d q = qr.householderQ();
+  basis_.setZero();
+  basis_.topLeftCorner<3, 3>().setIdentity();
+  basis_.bottomRightCorner<3, 2>() = q.rightCols<2>();
+}
+
+bool AxisLockedSe3Manifold::Plus(const double* x, const double* delta, double* x_plus_delta) const {
+  const Vector6d full_delta =
+      basis_ * Eigen::Map<const Eigen::Matrix<double, kPoseTangentSize - 1, 1>>(delta);
+  return full_.Plus(x, full_delta.data(), x_plus_delta);
+}
+
+bool AxisLockedSe3Manifold::PlusJacobian(const double* x, double* jacobian) const {
+  Matrix76 full;
+  full_.PlusJacobian(x, full.data());
+  Eigen::Map<Eigen::Matrix<double, kPoseAmbientSize, kPoseTangentSize - 1, Eigen::RowMajor>> j(
+      jacobian);
+  j = full * basis_;
+  return true;
+}
+
+bool AxisLockedSe3Manifold::Minus(const double* y, const double* x, double* y_minus_x) const {
+  Vector6d full_difference;
+  full_.Minus(y, x, full_difference.data());
+  Eigen::Map<Eigen::Matrix<double, kPoseTangentSize - 1, 1>> difference(y_minus_x);
+  difference = basis_.transpose() * full_difference;
+  return true;
+}
+
+bool AxisLockedSe3Manifold::MinusJacobian(const double* x, double* jacobian) const {
+  Eigen::Map<Eigen::Matrix<double, kPoseTangentSize - 1, kPoseAmbientSize, Eigen::RowMajor>> j(
+      jacobian);
+  j = basis_.transpose() * TangentFromAmbientJacobian(x);
+  return true;
+}
+
+std::unique_ptr<ceres::Manifold> NewPoseManifold(
+    const std::optional<RotationalSymmetry>& symmetry_in_objcentre) {
+  if (symmetry_in_objcentre.has_value()) {
+    return std::make_unique<AxisLockedSe3Manifold>(*symmetry_in_objcentre);
+  }
+  return std::make_unique<Se3Manifold>();
 }
 
 }  // namespace bcot

@@ -237,7 +237,9 @@ Status WindowProblemOptions::Validate() const {
   return internal::JoinViolations("window", violations);
 }
 
-WindowProblem::WindowProblem(const WindowProblemOptions& options) : options_(options) {
+WindowProblem::WindowProblem(const WindowProblemOptions& options,
+                             const std::optional<RotationalSymmetry>& symmetry_in_objcentre)
+    : options_(options), symmetry_in_objcentre_(symmetry_in_objcentre) {
   BCOT_CHECK(options_.Validate().ok());
 }
 
@@ -275,14 +277,14 @@ WindowSummary WindowProblem::Solve(
   const int hi = std::min(num_frames, end + context);
   std::vector<PoseParameters> parameters(hi - lo);
   std::vector<bool> free(hi - lo, false);
-  Se3Manifold manifold;
+  const std::unique_ptr<ceres::Manifold> manifold = NewPoseManifold(symmetry_in_objcentre_);
   ceres::Problem::Options problem_options;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   for (int t = lo; t < hi; ++t) {
     parameters[t - lo] = ToPoseParameters((*rig_from_objcentre)[t]);
     double* block = parameters[t - lo].data();
-    problem.AddParameterBlock(block, kPoseAmbientSize, &manifold);
+    problem.AddParameterBlock(block, kPoseAmbientSize, manifold.get());
     const bool in_window = t >= first && t < end;
     if (in_window && frame_views[t - first] != nullptr && !frame_views[t - first]->empty()) {
       free[t - lo] = true;
@@ -373,7 +375,9 @@ WindowSummary WindowProblem::Solve(
   return summary;
 }
 
-WindowSmoother::WindowSmoother(const WindowProblemOptions& options) : problem_(options) {}
+WindowSmoother::WindowSmoother(const WindowProblemOptions& options,
+                               const std::optional<RotationalSymmetry>& symmetry_in_objcentre)
+    : problem_(options, symmetry_in_objcentre) {}
 
 void WindowSmoother::Push(const Eigen::Isometry3d& rig_from_objcentre,
                           std::vector<ViewLinearisation> views) {
@@ -442,7 +446,8 @@ void WindowSmoother::SolveWindow(int end) {
     const int lo = std::max(0, first - configured.ContextFrames());
     const std::vector<Eigen::Isometry3d> span(per_frame_poses_.begin() + lo,
                                               per_frame_poses_.begin() + hi);
-    const WindowProblem adapted(AdaptedPriorOptions(configured, span, *noise));
+    const WindowProblem adapted(AdaptedPriorOptions(configured, span, *noise),
+                                problem_.symmetry_in_objcentre());
     windows_.push_back(adapted.Solve(first, end, frame_views, &poses_, &anchors_));
   } else {
     windows_.push_back(problem_.Solve(first, end, frame_views, &poses_, &anchors_));

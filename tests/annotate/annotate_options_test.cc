@@ -106,9 +106,10 @@ TEST(AnnotateOptionsTest, UnknownKeyNamesFileLineAndKey) {
   // Every section is known, not only those present in the file (track.yaml has four).
   const StatusOr<AnnotateOptions> typo =
       ReadAnnotateOptions(test::SourcePath("configs/track.yaml"), {"windoww.size=3"});
-  EXPECT_THAT(typo.status().message(),
-              HasSubstr("--set windoww: unknown key (did you mean 'window'?); known keys: color, "
-                        "cost, edge, frame, lines, quality, region, tracker, views, window"));
+  EXPECT_THAT(
+      typo.status().message(),
+      HasSubstr("--set windoww: unknown key (did you mean 'window'?); known keys: color, "
+                "cost, edge, frame, lines, quality, region, symmetry, tracker, views, window"));
 }
 
 TEST(AnnotateOptionsTest, OutOfRangeValuesNameTheirLineAndKey) {

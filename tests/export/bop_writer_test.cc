@@ -204,6 +204,7 @@ TEST_P(BopWriterTest, ModelReprojectedFromTheJsonAloneMatchesMaskVisib) {
   EXPECT_NEAR(info.at("size_z").get<double>(), max.z() - min.z(), 1e-3);
   EXPECT_LE(info.at("diameter").get<double>(), (max - min).norm() + 1e-3);
   EXPECT_GE(info.at("diameter").get<double>(), (max - min).maxCoeff() - 1e-3);
+  EXPECT_FALSE(info.contains("symmetries_continuous"));  // the knot has none
 
   Eigen::Matrix3d R_w2c[2];
   Eigen::Vector3d t_w2c[2];
@@ -380,6 +381,50 @@ TEST(BopWriterFramesTest, FrameRangeStepAndOneCameraWithoutSuffix) {
       ExportAnnotation(dir.File("seq"), dir.File("seq/gt"), out.path(), options).status();
   EXPECT_EQ(status.code(), StatusCode::kInvalidConfig);
   EXPECT_THAT(status.message(), HasSubstr("4 frames"));
+}
+
+TEST(BopWriterSymmetryTest, ABodyOfRevolutionListsItsAxisInModelsInfo) {
+  test::TempDir dir;
+  SynthOptions synth = test::SmallBinocularSynthOptions(160, 128, 1);
+  synth.object.mesh = test::SourcePath("data/meshes/spool.off");
+  synth.object.size_mm = 120.0;
+  ASSERT_TRUE(Synthesize(synth, dir.File("seq")).ok());
+  for (const bool listed : {true, false}) {
+    test::TempDir out;
+    ExportOptions options;
+    options.format = ExportFormat::kBop;
+    options.bop.symmetries_continuous = listed;
+    ASSERT_TRUE(ExportAnnotation(dir.File("seq"), dir.File("seq/gt"), out.path(), options).ok());
+    const Json info = ReadJson(out.File("models/models_info.json")).at("1");
+    ASSERT_EQ(info.contains("symmetries_continuous"), listed);
+    if (!listed) continue;
+    const Json& symmetry = info.at("symmetries_continuous").at(0);
+    ExpectNumbers(symmetry.at("axis"), 3, "axis");
+    ExpectNumbers(symmetry.at("offset"), 3, "offset");
+    // The spool's axis is its mesh's x axis; BOP's model frame only moves the origin.
+    const Eigen::Vector3d axis(symmetry.at("axis")[0].get<double>(),
+                               symmetry.at("axis")[1].get<double>(),
+                               symmetry.at("axis")[2].get<double>());
+    EXPECT_GT(std::abs(axis.normalized().x()), 1.0 - 1e-6);
+    // The offset is a point on the axis: turning the model about it keeps its vertices on the
+    // model (checked on the PLY's vertices through their distance to the axis, which a turn
+    // keeps, and which must match the ring radii of the original).
+    const Eigen::Vector3d offset(symmetry.at("offset")[0].get<double>(),
+                                 symmetry.at("offset")[1].get<double>(),
+                                 symmetry.at("offset")[2].get<double>());
+    const PlyModel model = ReadAsciiPly(out.File("models/obj_000001.ply"));
+    double largest = 0.0, smallest_at_rim = 1e9;
+    for (const Eigen::Vector3d& v : model.vertices) {
+      const double radius = (v - offset).cross(axis.normalized()).norm();
+      largest = std::max(largest, radius);
+    }
+    for (const Eigen::Vector3d& v : model.vertices) {
+      const double radius = (v - offset).cross(axis.normalized()).norm();
+      if (radius > 0.99 * largest) smallest_at_rim = std::min(smallest_at_rim, radius);
+    }
+    // Every vertex of the outer rim at the same distance from the axis, to 0.1 %.
+    EXPECT_GT(smallest_at_rim, 0.999 * largest);
+  }
 }
 
 }  // namespace

@@ -107,5 +107,74 @@ TEST(Se3ManifoldTest, GradientCheckerAcceptsLieJacobians) {
   }
 }
 
+RotationalSymmetry TiltedAxis() {
+  return {Eigen::Vector3d(0.2, 0.9, -0.4).normalized(), Eigen::Vector3d(15.0, -8.0, 22.0)};
+}
+
+TEST(AxisLockedSe3ManifoldTest, InvariantsHold) {
+  std::mt19937 rng(37);
+  const AxisLockedSe3Manifold manifold(TiltedAxis());
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const auto random_delta = [&](double scale) {
+    Eigen::VectorXd delta(5);
+    for (int k = 0; k < 5; ++k) delta[k] = scale * uniform(rng);
+    return delta;
+  };
+  for (int trial = 0; trial < 20; ++trial) {
+    const PoseParameters x = ToPoseParameters(ExpSE3(RandomTwist(rng, 2.0, 300.0)));
+    PoseParameters y;
+    manifold.Plus(x.data(), random_delta(0.8).data(), y.data());
+    const Eigen::VectorXd xd = x, yd = y, dd = random_delta(0.4);
+    EXPECT_THAT_MANIFOLD_INVARIANTS_HOLD(manifold, xd, dd, yd, 1e-9);
+  }
+}
+
+TEST(AxisLockedSe3ManifoldTest, StepsNeverTurnAboutTheAxisAndReachEveryOtherDirection) {
+  const RotationalSymmetry symmetry = TiltedAxis();
+  const AxisLockedSe3Manifold manifold(symmetry);
+  std::mt19937 rng(41);
+  const PoseParameters x = ToPoseParameters(ExpSE3(RandomTwist(rng, 2.0, 300.0)));
+  Eigen::Matrix<double, 7, 5, Eigen::RowMajor> plus_jacobian;
+  manifold.PlusJacobian(x.data(), plus_jacobian.data());
+  // In the full tangent no step has a rotation about the axis ...
+  const Eigen::Matrix<double, 6, 5> steps = TangentFromAmbientJacobian(x.data()) * plus_jacobian;
+  EXPECT_LT((symmetry.axis.transpose() * steps.bottomRows<3>()).norm(), 1e-12);
+  // ... and the steps with the symmetry's twist span every direction.
+  Matrix6d with_twist;
+  with_twist << steps, symmetry.Twist();
+  const Eigen::FullPivLU<Matrix6d> lu(with_twist);
+  EXPECT_EQ(lu.rank(), 6);
+  // Finite steps too: the pose's rotation never gains a turn about the axis.
+  for (int trial = 0; trial < 10; ++trial) {
+    Eigen::Matrix<double, 5, 1> delta = Eigen::Matrix<double, 5, 1>::Random();
+    delta.head<3>() *= 20.0;
+    PoseParameters y;
+    manifold.Plus(x.data(), delta.data(), y.data());
+    const Eigen::Vector3d turn = LogSO3(FromPoseParameters(x.data()).linear().transpose() *
+                                        FromPoseParameters(y.data()).linear());
+    EXPECT_LT(std::abs(turn.dot(symmetry.axis)), 1e-12);
+  }
+}
+
+TEST(AxisLockedSe3ManifoldTest, GradientCheckerAcceptsLieJacobians) {
+  std::mt19937 rng(43);
+  const AxisLockedSe3Manifold manifold(TiltedAxis());
+  std::vector<const Manifold*> manifolds = {&manifold};
+  NumericDiffOptions numeric_options;
+  Eigen::Isometry3d rig_from_obj = ExpSE3(RandomTwist(rng, 1.0, 30.0));
+  rig_from_obj.translation() += Eigen::Vector3d(0.0, 0.0, 600.0);
+  const PointProjectionCost cost(Eigen::Isometry3d::Identity(), Eigen::Vector3d(40.0, -25.0, 18.0));
+  GradientChecker checker(&cost, &manifolds, numeric_options);
+  PoseParameters x = ToPoseParameters(rig_from_obj);
+  const double* parameters[] = {x.data()};
+  GradientChecker::ProbeResults results;
+  EXPECT_TRUE(checker.Probe(parameters, 1e-7, &results)) << results.error_log;
+}
+
+TEST(NewPoseManifoldTest, LocksTheAxisOnlyForASymmetricObject) {
+  EXPECT_EQ(NewPoseManifold(std::nullopt)->TangentSize(), 6);
+  EXPECT_EQ(NewPoseManifold(TiltedAxis())->TangentSize(), 5);
+}
+
 }  // namespace
 }  // namespace bcot

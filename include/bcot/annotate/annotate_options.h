@@ -21,6 +21,7 @@
 //   views:   ViewSelection            cameras (names; empty = all), weights (one per camera)
 //   quality: QualityOptions           threshold_px, statistic, allowed_bad_fraction, ...
 //                                     (bcot/quality/quality_report.h)
+//   symmetry: SymmetryHandling        detect, tolerance (render/symmetry_detection.h)
 //   window:  WindowProblemOptions     enabled, size, overlap, iterations, prior (decoupled |
 //                                     se3), rotation_sigma_deg
 //                                     [x, y, z], translation_sigma_mm [x, y, z],
@@ -44,6 +45,7 @@
 #include "bcot/optim/multi_view_tracker.h"
 #include "bcot/optim/window_problem.h"
 #include "bcot/quality/quality_options.h"
+#include "bcot/render/symmetry_detection.h"
 
 namespace bcot {
 
@@ -59,6 +61,15 @@ struct ViewSelection {
 // full), or set, e.g. for lossless frames transcoded from 4:2:0 JPEG.
 enum class ChromaSamplingSetting { kAuto, kFull, kJpeg420, kJpeg422 };
 
+// Bodies of revolution (docs/method.md, "Symmetric objects"): when the mesh is one, no image
+// observes the angle about its axis, and every solve keeps it where tracking started.
+struct SymmetryHandling {
+  // Look for the symmetry in the mesh (render/symmetry_detection.h); false = treat every object
+  // as asymmetric (e.g. a cylinder whose printed label the colour models could follow).
+  bool detect = true;
+  SymmetryDetectionOptions detection;
+};
+
 struct AnnotateOptions {
   // The optim layer's defaults, except the rounds: 2 per tracked frame (the edge stage then
   // places the contour) and 5 per bootstrap solve of frame 0 (docs/notes/issue19_speed.md),
@@ -71,6 +82,7 @@ struct AnnotateOptions {
   ViewSelection views;
   ChromaSamplingSetting chroma_sampling = ChromaSamplingSetting::kAuto;
   QualityOptions quality;
+  SymmetryHandling symmetry;
   // The temporal smoothing window after the per-frame solves (off unless enabled).
   WindowProblemOptions window;
   // Lists every violation of the declared rules in one kInvalidConfig status, then the optim

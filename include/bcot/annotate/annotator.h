@@ -30,12 +30,14 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bcot/annotate/annotate_options.h"
 #include "bcot/annotate/image_response_file.h"
 #include "bcot/core/image_cache.h"
+#include "bcot/core/rotational_symmetry.h"
 #include "bcot/core/sequence.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/frame_problem.h"
@@ -55,7 +57,10 @@ struct AnnotatedFrame {
 struct SequenceAnnotation {
   int first_frame = 0;                  // frame index of the first entry of the vectors below
   std::vector<std::string> view_names;  // the cameras used, in solve order
-  std::vector<Eigen::Isometry3d> rig_from_object;            // per frame, O_t (final)
+  std::vector<Eigen::Isometry3d> rig_from_object;  // per frame, O_t (final)
+  // The mesh's rotational symmetry (O_t) when it is a body of revolution: the poses' angle about
+  // its axis is then a convention (kept from the first anchor), not a measurement.
+  std::optional<RotationalSymmetry> symmetry;
   std::vector<Eigen::Isometry3d> per_frame_rig_from_object;  // before the window, O_t
   std::vector<AnnotatedFrame> frames;                        // per frame
   int failed_frames = 0;                                     // frames whose solve was not usable
@@ -147,6 +152,9 @@ struct AnnotationOutcome {
   // Advice about the input that does not stop the run (CaptureNotes), for the user to read.
   std::vector<std::string> notes;
 };
+
+// The note `bcot annotate` prints for an object that is a body of revolution.
+std::string SymmetryNote(const RotationalSymmetry& symmetry);
 
 // Notes about how `sequence` was captured that limit the precision a user can expect: today,
 // cameras whose first frame is a JPEG with subsampled chroma (ReadChromaSampling), named

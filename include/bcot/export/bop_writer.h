@@ -25,9 +25,11 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 
 #include "bcot/core/camera.h"
+#include "bcot/core/rotational_symmetry.h"
 #include "bcot/core/status.h"
 #include "bcot/export/exporter.h"
 #include "bcot/render/mesh.h"
@@ -40,6 +42,8 @@ struct BopModelInfo {
   double diameter = 0.0;  // largest distance between any two vertices (exact)
   Eigen::Vector3d min = Eigen::Vector3d::Zero();
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  // "symmetries_continuous": [{"axis", "offset"}] (a point on the axis, mm) when set.
+  std::optional<RotationalSymmetry> symmetry;
 };
 BopModelInfo ComputeBopModelInfo(const Mesh& mesh);
 

@@ -44,6 +44,10 @@ struct BopExportOptions {
   int scene_id = 0;
   // Object id: models/obj_<obj_id as 6 digits>.ply and scene_gt's obj_id; [1, 999999].
   int obj_id = 1;
+  // models_info.json lists the model's continuous symmetry ("symmetries_continuous": its axis
+  // and a point on it) when the mesh is a body of revolution (render/symmetry_detection.h,
+  // default tolerance); false = never (a cylinder whose texture shows its angle).
+  bool symmetries_continuous = true;
 };
 
 // YAML (configs/export.yaml) keys are the field names ("bop.split" for the nested ones).

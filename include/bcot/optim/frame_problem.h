@@ -45,11 +45,13 @@
 #include <Eigen/Geometry>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bcot/core/camera.h"
 #include "bcot/core/chroma_sampling.h"
+#include "bcot/core/rotational_symmetry.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/color_model.h"
 #include "bcot/optim/correspondence_lines.h"
@@ -229,7 +231,10 @@ class FrameProblem {
   // `caster` (the object's mesh) must outlive the problem; `options` must be valid (CHECKed:
   // validate user input with FrameProblemOptions::Validate first) with a resolved edge
   // response (CHECKed: MultiViewTracker resolves ImageResponse::Kind::kAuto).
-  FrameProblem(const RayCaster& caster, const FrameProblemOptions& options);
+  // `symmetry`: the mesh's rotational symmetry in O_t (render/symmetry_detection.h), if any;
+  // every solve then keeps the angle about its axis where it started (AxisLockedSe3Manifold).
+  FrameProblem(const RayCaster& caster, const FrameProblemOptions& options,
+               const std::optional<RotationalSymmetry>& symmetry = std::nullopt);
 
   // Minimises the joint energy starting from *rig_from_objcentre and writes the result there
   // (unless !summary.usable()). Views with weight 0 or the object out of view contribute no
@@ -263,6 +268,7 @@ class FrameProblem {
   // The mesh's creases, found once when the edge stage measures them (edge.lines.crease_contours).
   std::vector<Crease> creases_;
   FrameProblemOptions options_;
+  std::optional<RotationalSymmetry> symmetry_in_objcentre_;  // O_o
 };
 
 }  // namespace bcot

@@ -85,11 +85,14 @@ struct TrackedView {
 
 class MultiViewTracker {
  public:
-  // `caster` must outlive the tracker. Errors: invalid options or cameras, no view, a
-  // negative or non-finite weight (kInvalidConfig).
-  static StatusOr<std::unique_ptr<MultiViewTracker>> Create(const RayCaster& caster,
-                                                            std::vector<TrackedView> views,
-                                                            const MultiViewTrackerOptions& options);
+  // `caster` must outlive the tracker. `symmetry`: the mesh's rotational symmetry in O_t
+  // (render/symmetry_detection.h), if any; no solve then turns the object about its axis
+  // (FrameProblem). Errors: invalid options or cameras, no view, a negative or non-finite
+  // weight (kInvalidConfig).
+  static StatusOr<std::unique_ptr<MultiViewTracker>> Create(
+      const RayCaster& caster, std::vector<TrackedView> views,
+      const MultiViewTrackerOptions& options,
+      const std::optional<RotationalSymmetry>& symmetry = std::nullopt);
 
   // See the header comment. Images must match the views' camera sizes (else kInvalidInput).
   Status Reset(const std::vector<cv::Mat3b>& images, const Eigen::Isometry3d& rig_from_objcentre);
@@ -114,7 +117,8 @@ class MultiViewTracker {
 
  private:
   MultiViewTracker(const RayCaster& caster, std::vector<TrackedView> views,
-                   const MultiViewTrackerOptions& options);
+                   const MultiViewTrackerOptions& options,
+                   const std::optional<RotationalSymmetry>& symmetry);
   Status CheckImages(const std::vector<cv::Mat3b>& images) const;
   // Replaces view `view`'s colour models by fresh (unlearned) ones.
   void ResetColorModels(size_t view);
@@ -126,6 +130,13 @@ class MultiViewTracker {
   FrameSummary Solve(const FrameProblem& problem, const std::vector<cv::Mat3b>& images,
                      Eigen::Isometry3d* rig_from_objcentre,
                      std::vector<ViewLinearisation>* linearisations, bool refine);
+  // For a body of revolution, *rig_from_objcentre turned about the axis to the angle nearest
+  // `reference` (RotationalSymmetry::HoldAngle): the solves never turn about the axis
+  // (AxisLockedSe3Manifold), but their increments compose to a turn of second order (~0.01° per
+  // frame), which this takes off. Then from one frame to the next the rotation has no part about
+  // the axis at all. A no-op for other objects.
+  void HoldSymmetryAngle(const Eigen::Isometry3d& reference,
+                         Eigen::Isometry3d* rig_from_objcentre) const;
   // The frame's views for a FrameProblem (colour models by `refine` as in Solve).
   std::vector<FrameView> FrameViews(const std::vector<cv::Mat3b>& images, bool refine) const;
   // Decodes edges with `response` from now on (rebuilds the frame problems).
@@ -139,6 +150,7 @@ class MultiViewTracker {
   const RayCaster& caster_;
   std::vector<TrackedView> views_;
   MultiViewTrackerOptions options_;
+  std::optional<RotationalSymmetry> symmetry_;  // O_t
   ImageResponse image_response_;
   std::optional<StatusOr<ResponseEstimate>> response_estimate_;
   // The frame problems of options_ with image_response_ (resolved) as the edge response.

@@ -19,8 +19,11 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <memory>
+#include <optional>
 #include <vector>
 
+#include "bcot/core/rotational_symmetry.h"
 #include "bcot/core/se3.h"
 
 namespace bcot {
@@ -65,5 +68,40 @@ class Se3Manifold final : public ceres::Manifold {
   bool Minus(const double* y, const double* x, double* y_minus_x) const override;
   bool MinusJacobian(const double* x, double* jacobian) const override;
 };
+
+// Se3Manifold without turns about the axis of a body of revolution (core/rotational_symmetry.h).
+// Its twist ξ = (p × a, a) is the direction no image observes; the tangent here is the
+// complement of ξ that keeps the rotation part perpendicular to the axis a (in O_o):
+//
+//   Plus:  T ⊕ δ = T · Exp(B·δ),  B = [[I₃, 0], [0, U]]   Minus: y ⊖ x = Bᵀ·Log(T_x⁻¹ · T_y)
+//
+// with U (3×2) an orthonormal basis of a's orthogonal plane. Every twist splits uniquely as
+// (φ·a)·ξ + B·δ, so each observable change of pose is still one step, and no step turns the
+// object about its axis: the angle about it stays where tracking started (the gauge of a
+// symmetric object; docs/method.md, "Symmetric objects"). (The complement orthogonal to ξ
+// itself would not do: with ξ's translation part p × a in mm, translating the object along it
+// costs a turn about the axis of up to 1/(2|p × a|) rad per mm, and a moving object spins.)
+// Cost functions keep handing Ceres ∂r/∂δ₆·MinusJacobian₆ (AmbientFromLieJacobian); with
+// PlusJacobian = PlusJacobian₆·B Ceres recovers ∂r/∂δ₆·B.
+class AxisLockedSe3Manifold final : public ceres::Manifold {
+ public:
+  // `symmetry` in O_o (the frame of the pose's tangent); only its axis direction is used.
+  explicit AxisLockedSe3Manifold(const RotationalSymmetry& symmetry);
+  int AmbientSize() const override { return kPoseAmbientSize; }
+  int TangentSize() const override { return kPoseTangentSize - 1; }
+  bool Plus(const double* x, const double* delta, double* x_plus_delta) const override;
+  bool PlusJacobian(const double* x, double* jacobian) const override;
+  bool Minus(const double* y, const double* x, double* y_minus_x) const override;
+  bool MinusJacobian(const double* x, double* jacobian) const override;
+
+ private:
+  Se3Manifold full_;
+  Eigen::Matrix<double, kPoseTangentSize, kPoseTangentSize - 1> basis_;  // B
+};
+
+// The pose manifold of a problem: AxisLockedSe3Manifold for an object with a rotational
+// symmetry (in O_o), else Se3Manifold.
+std::unique_ptr<ceres::Manifold> NewPoseManifold(
+    const std::optional<RotationalSymmetry>& symmetry_in_objcentre);
 
 }  // namespace bcot

@@ -216,8 +216,12 @@ struct WindowSummary {
 
 class WindowProblem {
  public:
-  // `options` must be valid (CHECKed).
-  explicit WindowProblem(const WindowProblemOptions& options);
+  // `options` must be valid (CHECKed). `symmetry_in_objcentre`: the object's rotational
+  // symmetry in O_o, if any; the window then keeps every frame's angle about its axis
+  // (AxisLockedSe3Manifold).
+  explicit WindowProblem(
+      const WindowProblemOptions& options,
+      const std::optional<RotationalSymmetry>& symmetry_in_objcentre = std::nullopt);
 
   // Refines (*rig_from_objcentre)[first, end) in one problem (see the header comment):
   // frame_views[t − first] are frame t's templates (empty = held constant); the C =
@@ -231,20 +235,26 @@ class WindowProblem {
                       const std::map<int, Eigen::Isometry3d>* anchors = nullptr) const;
 
   const WindowProblemOptions& options() const { return options_; }
+  const std::optional<RotationalSymmetry>& symmetry_in_objcentre() const {
+    return symmetry_in_objcentre_;
+  }
 
  private:
   // The Gaussian of an anchor at `rig_from_objcentre` with the keyframe sigmas.
   PoseGaussian AnchorGaussian(const Eigen::Isometry3d& rig_from_objcentre) const;
 
   WindowProblemOptions options_;
+  std::optional<RotationalSymmetry> symmetry_in_objcentre_;
 };
 
 // Runs the sliding windows over a sequence as its frames arrive, with bounded memory.
 // Not thread-safe.
 class WindowSmoother {
  public:
-  // `options` must be valid (CHECKed).
-  explicit WindowSmoother(const WindowProblemOptions& options);
+  // `options` must be valid (CHECKed); `symmetry_in_objcentre` as for WindowProblem.
+  explicit WindowSmoother(
+      const WindowProblemOptions& options,
+      const std::optional<RotationalSymmetry>& symmetry_in_objcentre = std::nullopt);
 
   // Appends the next frame: its per-frame pose and templates (empty when its solve failed).
   // Solves every window whose frames and look-ahead have all arrived.
