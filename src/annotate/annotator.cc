@@ -73,11 +73,13 @@ Status CheckAnchorPose(const Eigen::Isometry3d& rig_from_object, const std::stri
       "{}: the object is not in view at frame {}: its centre is {}", source, frame, places));
 }
 
-// The mesh's rotational symmetry in O_t when options.symmetry asks for it and it has one.
-StatusOr<std::optional<RotationalSymmetry>> ObjectSymmetry(const RayCaster& caster,
-                                                           const AnnotateOptions& options) {
+// The mesh's rotational symmetry in O_t when options.symmetry asks for it and it has one;
+// `candidates` (may be null) receives the axes checked (DetectRotationalSymmetry).
+StatusOr<std::optional<RotationalSymmetry>> ObjectSymmetry(
+    const RayCaster& caster, const AnnotateOptions& options,
+    std::vector<SymmetryCandidate>* candidates = nullptr) {
   if (!options.symmetry.detect) return std::optional<RotationalSymmetry>();
-  return DetectRotationalSymmetry(caster, options.symmetry.detection);
+  return DetectRotationalSymmetry(caster, options.symmetry.detection, candidates);
 }
 
 // Frames before and after a re-annotated span whose existing poses the window holds as its
@@ -344,8 +346,9 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
   if (!existing.empty() && span.first > 0 && anchors.count(span.first) == 0) {
     anchors[span.first - 1] = existing[span.first - 1];
   }
+  std::vector<SymmetryCandidate> symmetry_candidates;
   BCOT_ASSIGN_OR_RETURN(const std::optional<RotationalSymmetry> symmetry,
-                        ObjectSymmetry(caster, options));
+                        ObjectSymmetry(caster, options, &symmetry_candidates));
   if (symmetry.has_value()) {
     // Each anchor (a hand-set pose has its own angle about the axis) turned about the axis to
     // the angle nearest the one before it, so that every tracking segment keeps one angle.
@@ -365,6 +368,7 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
 
   SequenceAnnotation annotation;
   annotation.symmetry = symmetry;
+  annotation.symmetry_candidates = std::move(symmetry_candidates);
   annotation.first_frame = span.first;
   for (const TrackedView& view : *views) annotation.view_names.push_back(view.camera.name);
   const Eigen::Isometry3d objcentre_from_template = mesh.objcentre_from_template();
@@ -646,20 +650,39 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
       FinishAnnotation(out_dir, sequence, caster, options, input_hash, annotation.rig_from_object,
                        std::move(quality), annotation.failed_frames));
   outcome.notes = CaptureNotes(sequence);
-  if (annotation.symmetry.has_value()) outcome.notes.push_back(SymmetryNote(*annotation.symmetry));
+  for (std::string& note : SymmetryNotes(annotation, options.symmetry.detection.tolerance)) {
+    outcome.notes.push_back(std::move(note));
+  }
   return outcome;
 }
 
-std::string SymmetryNote(const RotationalSymmetry& symmetry) {
-  const Eigen::Vector3d& a = symmetry.axis;
-  const Eigen::Vector3d& p = symmetry.point;
-  return fmt::format(
-      "the object is a body of revolution about the axis ({:.3f}, {:.3f}, {:.3f}) through "
-      "({:.2f}, {:.2f}, {:.2f}) mm of its mesh frame: no image shows its angle about that axis, "
-      "so the poses keep the angle of the first pose (init_pose.txt or a keyframe); set "
-      "symmetry.detect: false if its texture makes the angle visible (docs/method.md, "
-      "\"Symmetric objects\")",
-      a.x(), a.y(), a.z(), p.x(), p.y(), p.z());
+std::vector<std::string> SymmetryNotes(const SequenceAnnotation& annotation, double tolerance) {
+  constexpr double kNearMissFactor = 10.0;
+  if (annotation.symmetry.has_value()) {
+    const Eigen::Vector3d& a = annotation.symmetry->axis;
+    const Eigen::Vector3d& p = annotation.symmetry->point;
+    return {fmt::format(
+        "the object is a body of revolution about the axis ({:.3f}, {:.3f}, {:.3f}) through "
+        "({:.2f}, {:.2f}, {:.2f}) mm of its mesh frame: no image shows its angle about that "
+        "axis, so the poses keep the angle of the first pose (init_pose.txt or a keyframe); set "
+        "symmetry.detect: false if its texture makes the angle visible (docs/method.md, "
+        "\"Symmetric objects\")",
+        a.x(), a.y(), a.z(), p.x(), p.y(), p.z())};
+  }
+  std::vector<std::string> notes;
+  for (const SymmetryCandidate& candidate : annotation.symmetry_candidates) {
+    if (candidate.displacement > kNearMissFactor * tolerance) continue;
+    const Eigen::Vector3d& a = candidate.symmetry.axis;
+    notes.push_back(fmt::format(
+        "the object is nearly a body of revolution about the axis ({:.3f}, {:.3f}, {:.3f}) of "
+        "its mesh frame: a turn about it changes the silhouette by {:.2g} of the diameter, more "
+        "than symmetry.tolerance ({:.2g}), so the angle about it is solved like any other; if "
+        "the real object is round (a scanned or faceted mesh) and its poses turn about that "
+        "axis from frame to frame, raise symmetry.tolerance above {:.2g} (docs/method.md, "
+        "\"Symmetric objects\")",
+        a.x(), a.y(), a.z(), candidate.displacement, tolerance, candidate.displacement));
+  }
+  return notes;
 }
 
 std::vector<std::string> CaptureNotes(const Sequence& sequence) {

@@ -103,5 +103,25 @@ TEST_F(SymmetricObjectTest, DetectionCanBeSwitchedOff) {
     EXPECT_THAT(note, ::testing::Not(HasSubstr("revolution")));
 }
 
+TEST(SymmetryNotesTest, NameTheAxisOrANearMiss) {
+  SequenceAnnotation annotation;
+  EXPECT_TRUE(SymmetryNotes(annotation, 0.001).empty());
+  SymmetryCandidate near;
+  near.symmetry.axis = Eigen::Vector3d::UnitY();
+  near.displacement = 0.004;
+  SymmetryCandidate far = near;
+  far.displacement = 0.05;  // a gear's teeth: not worth a note
+  annotation.symmetry_candidates = {near, far};
+  const std::vector<std::string> notes = SymmetryNotes(annotation, 0.001);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_THAT(notes[0], HasSubstr("nearly a body of revolution about the axis (0.000, 1.000"));
+  EXPECT_THAT(notes[0], HasSubstr("raise symmetry.tolerance above 0.004"));
+  annotation.symmetry = RotationalSymmetry{Eigen::Vector3d::UnitX(), Eigen::Vector3d(1, 2, 3)};
+  const std::vector<std::string> found = SymmetryNotes(annotation, 0.001);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_THAT(found[0], HasSubstr("body of revolution about the axis (1.000, 0.000, 0.000) through "
+                                  "(1.00, 2.00, 3.00) mm"));
+}
+
 }  // namespace
 }  // namespace bcot

@@ -61,6 +61,8 @@ struct SequenceAnnotation {
   // The mesh's rotational symmetry (O_t) when it is a body of revolution: the poses' angle about
   // its axis is then a convention (kept from the first anchor), not a measurement.
   std::optional<RotationalSymmetry> symmetry;
+  // Every candidate axis the symmetry detection checked (render/symmetry_detection.h).
+  std::vector<SymmetryCandidate> symmetry_candidates;
   std::vector<Eigen::Isometry3d> per_frame_rig_from_object;  // before the window, O_t
   std::vector<AnnotatedFrame> frames;                        // per frame
   int failed_frames = 0;                                     // frames whose solve was not usable
@@ -153,8 +155,10 @@ struct AnnotationOutcome {
   std::vector<std::string> notes;
 };
 
-// The note `bcot annotate` prints for an object that is a body of revolution.
-std::string SymmetryNote(const RotationalSymmetry& symmetry);
+// The notes `bcot annotate` prints about the object's symmetry: that it is a body of revolution
+// (annotation.symmetry), or that it nearly is one (a candidate axis whose silhouette change was
+// within ten times `tolerance`).
+std::vector<std::string> SymmetryNotes(const SequenceAnnotation& annotation, double tolerance);
 
 // Notes about how `sequence` was captured that limit the precision a user can expect: today,
 // cameras whose first frame is a JPEG with subsampled chroma (ReadChromaSampling), named
