@@ -241,11 +241,10 @@ ceres::LossFunction* EdgeLoss(const EdgeRefineOptions& edge) {
 constexpr double kPosteriorViewScale = 3.0;
 constexpr double kPosteriorLineSpacingPx = 3.5;
 
-//
-// For a body of revolution (`symmetry`, O_o) no line observes the turn about its axis, so H is
-// singular there. The solves never move along that direction (AxisLockedSe3Manifold), and the
-// window's neither; H gets the information of the mean of its eigenvalues along it, so that it
-// can be inverted, which changes nothing in the directions the window estimates.
+// (EdgePosterior, continued.) For a body of revolution (`symmetry`, O_o) no line observes the
+// turn about its axis, so H is singular along its twist. Neither the solves nor the window move
+// along it (AxisLockedSe3Manifold); H gets the mean of its eigenvalues along it, so that it can
+// be inverted, which changes nothing in the directions the window estimates.
 std::shared_ptr<const PoseGaussian> EdgePosterior(
     const std::vector<std::pair<int, std::shared_ptr<const CorrespondenceLines>>>& measured,
     const std::vector<FrameView>& views, const EdgeRefineOptions& edge,
@@ -671,8 +670,9 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
       summary->views[v].edge_lines = static_cast<int>(lines->lines.size());
     }
     const Eigen::Isometry3d round_end = FromPoseParameters(parameters);
-    if (posterior != nullptr)
+    if (posterior != nullptr) {
       *posterior = EdgePosterior(measured, views, edge, round_end, symmetry_in_objcentre_);
+    }
     const double moved_deg = RotationDistanceDeg(linearisation_pose.linear(), round_end.linear());
     const double moved_mm = (round_end.translation() - linearisation_pose.translation()).norm();
     if (moved_deg < options_.round_tolerance_deg && moved_mm < options_.round_tolerance_mm) break;
