@@ -156,9 +156,9 @@ FrameSummary MultiViewTracker::Solve(const FrameProblem& problem,
 
 void MultiViewTracker::HoldSymmetryAngle(const Eigen::Isometry3d& reference,
                                          Eigen::Isometry3d* rig_from_objcentre) const {
-  if (!symmetry_.has_value()) return;
-  *rig_from_objcentre = symmetry_->Transformed(caster_.mesh().objcentre_from_template())
-                            .HoldAngle(*rig_from_objcentre, reference);
+  const std::optional<RotationalSymmetry>& symmetry = problem_->symmetry_in_objcentre();
+  if (symmetry.has_value())
+    *rig_from_objcentre = symmetry->HoldAngle(*rig_from_objcentre, reference);
 }
 
 bool MultiViewTracker::ResolveImageResponse(const std::vector<cv::Mat3b>& images,

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 #include "bcot/core/se3.h"
@@ -53,46 +54,14 @@ void SurfaceMoments(const Mesh& mesh, Eigen::Vector3d* centroid, Eigen::Matrix3d
   *moments = second / std::max(area, 1e-300) - *centroid * centroid->transpose();
 }
 
-// A unit vector perpendicular to `axis`.
-Eigen::Vector3d Perpendicular(const Eigen::Vector3d& axis) {
-  const Eigen::Vector3d other =
-      std::abs(axis.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  return axis.cross(other).normalized();
-}
-
-// cam_from_template of a camera at `centre` + distance·direction looking at `centre`.
-Eigen::Isometry3d LookAt(const Eigen::Vector3d& centre, const Eigen::Vector3d& direction,
-                         double distance) {
-  const Eigen::Vector3d z = -direction.normalized();
-  const Eigen::Vector3d x = Perpendicular(z);
-  const Eigen::Vector3d y = z.cross(x);
-  Eigen::Matrix3d cam_from_template;
-  cam_from_template.row(0) = x;
-  cam_from_template.row(1) = y;
-  cam_from_template.row(2) = z;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = cam_from_template;
-  pose.translation() = -cam_from_template * (centre + distance * direction.normalized());
-  return pose;
-}
-
-// Pixels of `mask` that differ from `other`, and the boundary pixels of `mask` (inside, with a
-// 4-neighbour outside).
+// The pixels of `mask` that differ from `other`, and its boundary pixels (inside, with a
+// 4-neighbour outside; the object never reaches the image's border here).
 void CompareMasks(const cv::Mat1b& mask, const cv::Mat1b& other, double* differing,
                   double* boundary) {
-  *differing = 0.0;
-  *boundary = 0.0;
-  for (int r = 0; r < mask.rows; ++r) {
-    for (int c = 0; c < mask.cols; ++c) {
-      const bool inside = mask(r, c) != 0;
-      if (inside != (other(r, c) != 0)) *differing += 1.0;
-      if (!inside) continue;
-      const bool edge = r == 0 || c == 0 || r + 1 == mask.rows || c + 1 == mask.cols ||
-                        mask(r - 1, c) == 0 || mask(r + 1, c) == 0 || mask(r, c - 1) == 0 ||
-                        mask(r, c + 1) == 0;
-      if (edge) *boundary += 1.0;
-    }
-  }
+  *differing = cv::countNonZero(mask != other);
+  cv::Mat1b interior;
+  cv::erode(mask, interior, cv::getStructuringElement(cv::MORPH_CROSS, cv::Size(3, 3)));
+  *boundary = cv::countNonZero(mask) - cv::countNonZero(interior);
 }
 
 // Step 2 of the header: the worst mean silhouette displacement over views and turns, as a
@@ -114,7 +83,7 @@ double SilhouetteDisplacement(const RayCaster& caster, const RotationalSymmetry&
   options.depth = options.normal_in_cam = options.point_in_object = options.triangle_id = false;
 
   const Eigen::Vector3d& a = symmetry.axis;
-  const Eigen::Vector3d u = Perpendicular(a);
+  const Eigen::Vector3d u = a.unitOrthogonal();
   const Eigen::Vector3d v = a.cross(u);
   // (angle from the axis, azimuth) of the view directions, in degrees.
   constexpr std::array<std::array<double, 2>, 4> kViews = {
@@ -125,7 +94,9 @@ double SilhouetteDisplacement(const RayCaster& caster, const RotationalSymmetry&
     const double polar = polar_deg * kPi / 180.0, azimuth = azimuth_deg * kPi / 180.0;
     const Eigen::Vector3d direction =
         std::cos(polar) * a + std::sin(polar) * (std::cos(azimuth) * u + std::sin(azimuth) * v);
-    const Eigen::Isometry3d cam_from_template = LookAt(centre, direction, distance);
+    Eigen::Isometry3d template_from_cam = LookAtOrigin(distance * direction);
+    template_from_cam.translation() += centre;
+    const Eigen::Isometry3d cam_from_template = template_from_cam.inverse();
     const RenderedView base = caster.Render(camera, cam_from_template, options);
     for (double turn_deg : kTurnsDeg) {
       const RenderedView turned = caster.Render(

@@ -23,21 +23,6 @@ uint64_t SplitMix64(uint64_t* state) {
 
 uint64_t Rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
 
-// World-frame rotation of a camera at `position` looking at the origin, world z up (no roll).
-Eigen::Isometry3d LookAtOrigin(const Eigen::Vector3d& position) {
-  const Eigen::Vector3d forward = (-position).normalized();
-  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
-  if (forward.cross(up).norm() < 1e-6) up = Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d right = forward.cross(up).normalized();
-  const Eigen::Vector3d down = forward.cross(right);
-  Eigen::Isometry3d world_from_cam = Eigen::Isometry3d::Identity();
-  world_from_cam.linear().col(0) = right;
-  world_from_cam.linear().col(1) = down;
-  world_from_cam.linear().col(2) = forward;
-  world_from_cam.translation() = position;
-  return world_from_cam;
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------

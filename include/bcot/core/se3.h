@@ -58,6 +58,10 @@ Eigen::Matrix3d InterpolateSO3(const Eigen::Matrix3d& a, const Eigen::Matrix3d& 
 // Angle of the relative rotation between a and b in degrees, in [0, 180].
 double RotationDistanceDeg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b);
 
+// world_from_cam of a camera at `position` looking at the origin (x right, y down, z forward),
+// with world z up in its image (no roll); y up when it looks along z.
+Eigen::Isometry3d LookAtOrigin(const Eigen::Vector3d& position);
+
 // True when R is orthonormal with det +1 within `tolerance` (max abs entry of RᵀR − I).
 // On failure writes a short reason (e.g. "RᵀR deviates from I by 3.2e-02") to `why`.
 bool IsRotationMatrix(const Eigen::Matrix3d& rotation, double tolerance, std::string* why);

@@ -255,6 +255,10 @@ class FrameProblem {
 
   const RayCaster& caster() const { return caster_; }
   const FrameProblemOptions& options() const { return options_; }
+  // The symmetry given to the constructor, in O_o.
+  const std::optional<RotationalSymmetry>& symmetry_in_objcentre() const {
+    return symmetry_in_objcentre_;
+  }
 
  private:
   // The edge stage (EdgeRefineOptions) from and into `parameters` (7 ambient); false (the
