@@ -645,6 +645,7 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
       QualityReport quality,
       MeasureQuality(sequence, caster, annotation.rig_from_object, annotation.view_names,
                      options.quality, annotation.image_response.response, &images));
+  std::vector<std::string> saturation = SaturationWarnings(quality);
   BCOT_ASSIGN_OR_RETURN(
       AnnotationOutcome outcome,
       FinishAnnotation(out_dir, sequence, caster, options, input_hash, annotation.rig_from_object,
@@ -653,6 +654,7 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
   for (std::string& note : SymmetryNotes(annotation, options.symmetry.detection.tolerance)) {
     outcome.notes.push_back(std::move(note));
   }
+  for (std::string& note : saturation) outcome.notes.push_back(std::move(note));
   return outcome;
 }
 

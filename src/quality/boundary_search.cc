@@ -85,6 +85,38 @@ std::vector<double> BoundaryOffsets(const std::vector<ContourPoint>& contour,
   return offsets;
 }
 
+namespace {
+
+// The edge-line options of step 3b; window_px: its profile's reach from the boundary.
+EdgeLineOptions RefinementEdgeOptions(const QualityOptions& options) {
+  EdgeLineOptions edge;
+  edge.search_px = options.edge_search_px;
+  edge.min_snr = options.edge_min_snr;
+  edge.window_px = edge.search_px + edge.fit_half_px;
+  return edge;
+}
+
+}  // namespace
+
+int CountClippedPoints(const std::vector<ContourPoint>& contour, const cv::Mat3b& image,
+                       const LinearTable& linear, const QualityOptions& options) {
+  const EdgeLineOptions edge = RefinementEdgeOptions(options);
+  int clipped = 0;
+  EdgeLineSamples samples;
+  for (const ContourPoint& point : contour) {
+    if (!SampleEdgeLine(image, linear, point.pixel, point.normal, edge, &samples)) continue;
+    // The contrast across the contour (mean inside − mean outside), and what is left of it
+    // without the clipped channels, which the edge fits leave out.
+    const Eigen::Vector3d contrast = samples.inside - samples.outside;
+    Eigen::Vector3d unclipped = contrast;
+    for (int c = 0; c < 3; ++c) {
+      if (samples.peak[c] >= edge.clip_level) unclipped[c] = 0.0;
+    }
+    if (contrast.norm() >= edge.min_contrast && unclipped.norm() < edge.min_contrast) ++clipped;
+  }
+  return clipped;
+}
+
 RefinedOffsets RefineOffsetsOnEdges(const std::vector<ContourPoint>& contour,
                                     const std::vector<double>& offsets, const cv::Mat3b& image,
                                     const LinearTable& linear, const QualityOptions& options) {
@@ -92,10 +124,7 @@ RefinedOffsets RefineOffsetsOnEdges(const std::vector<ContourPoint>& contour,
   RefinedOffsets result;
   result.offsets.assign(contour.size(), kNaN);
   result.sigmas_px.assign(contour.size(), kNaN);
-  EdgeLineOptions edge;
-  edge.search_px = options.edge_search_px;
-  edge.min_snr = options.edge_min_snr;
-  edge.window_px = edge.search_px + edge.fit_half_px;
+  const EdgeLineOptions edge = RefinementEdgeOptions(options);
   for (size_t i = 0; i < contour.size(); ++i) {
     if (!std::isfinite(offsets[i])) continue;
     const Eigen::Vector2d centre = contour[i].pixel + offsets[i] * contour[i].normal;

@@ -199,7 +199,8 @@ std::string QualityJson(const QualityReport& report) {
                              {"unverified_fraction", view.unverified_fraction},
                              {"median_of_medians_px", view.median_of_medians_px},
                              {"worst_px", view.worst_px},
-                             {"worst_frames", view.worst_frames}});
+                             {"worst_frames", view.worst_frames},
+                             {"clipped_fraction", view.clipped_fraction}});
   }
   const QualityVerdict verdict = VerdictOf(report);
   json["worst_px"] = verdict.worst_px;
@@ -217,6 +218,7 @@ std::string QualityJson(const QualityReport& report) {
                                 {"points", q.points},
                                 {"found", q.found},
                                 {"ambiguous", q.ambiguous},
+                                {"clipped", q.clipped},
                                 {"verifiable", q.verifiable},
                                 {"bad", q.bad}});
     }
@@ -228,14 +230,15 @@ std::string QualityJson(const QualityReport& report) {
 std::string QualityCsv(const QualityReport& report) {
   std::string csv =
       "frame,view,median_px,p90_px,raw_median_px,raw_p90_px,points,found,bad,statistic_sigma_px,"
-      "ambiguous,verifiable\n";
+      "ambiguous,verifiable,clipped\n";
   for (size_t f = 0; f < report.frames.size(); ++f) {
     for (size_t v = 0; v < report.view_names.size(); ++v) {
       const ViewFrameQuality& q = report.frames[f][v];
-      csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", f, report.view_names[v],
+      csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", f, report.view_names[v],
                          JsonNumber(q.median_px), JsonNumber(q.p90_px), JsonNumber(q.raw_median_px),
                          JsonNumber(q.raw_p90_px), q.points, q.found, q.bad ? 1 : 0,
-                         JsonNumber(q.statistic_sigma_px), q.ambiguous, q.verifiable ? 1 : 0);
+                         JsonNumber(q.statistic_sigma_px), q.ambiguous, q.verifiable ? 1 : 0,
+                         q.clipped);
     }
   }
   return csv;
@@ -291,13 +294,21 @@ StatusOr<std::string> QualityHtml(const QualityReport& report, const Sequence& s
   }
   html +=
       "</div>\n<table><tr><th>view</th><th>bad frames</th><th>cannot tell</th>"
-      "<th>median of medians (px)</th><th>worst (px)</th></tr>";
+      "<th>median of medians (px)</th><th>worst (px)</th><th>contour saturated</th></tr>";
   for (const ViewQualitySummary& view : report.views) {
-    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.2f}</td><td>{:.2f}</td></tr>",
-                        HtmlEscape(view.name), view.bad_frames, view.unverified_frames,
-                        view.median_of_medians_px, view.worst_px);
+    html += fmt::format(
+        "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.2f}</td><td>{:.2f}</td><td>{:.0f}%</td></tr>",
+        HtmlEscape(view.name), view.bad_frames, view.unverified_frames, view.median_of_medians_px,
+        view.worst_px, 100.0 * view.clipped_fraction);
   }
-  html += "</table>\n" + ReviewCommand(report, annotation_dir);
+  html += "</table>\n";
+  const std::vector<std::string> saturation = SaturationWarnings(report);
+  if (!saturation.empty()) {
+    html += "<ul class='saturation'>";
+    for (const std::string& warning : saturation) html += "<li>" + HtmlEscape(warning) + "</li>";
+    html += "</ul>\n";
+  }
+  html += ReviewCommand(report, annotation_dir);
   for (size_t v = 0; v < report.view_names.size(); ++v) {
     const int rig_index = sequence.rig.Find(report.view_names[v]);
     if (rig_index < 0) {

@@ -22,6 +22,7 @@ namespace bcot {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // P_f of a disk of radius `radius` centred at `centre`, with an anti-aliased (area-coverage)
 // edge: 1 inside, 0 outside.
@@ -270,6 +271,25 @@ TEST(QualityReportTest, PredictionSigmaSeesWhatTheUsablePointsCannot) {
   EXPECT_TRUE(std::isnan(fitter.PredictionSigmaPercentile(five, 0.9)));
 }
 
+TEST(QualityReportTest, SaturationWarningsNameTheViewsAboveTheShare) {
+  QualityReport report;
+  report.views.resize(3);
+  report.views[0].name = "cam0";
+  report.views[0].clipped_fraction = 0.55;
+  report.views[1].name = "cam1";
+  report.views[1].clipped_fraction = kSaturatedContourWarningFraction - 0.01;
+  report.views[2].name = "cam2";
+  report.views[2].clipped_fraction = kSaturatedContourWarningFraction;
+  const std::vector<std::string> warnings = SaturationWarnings(report);
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_THAT(warnings[0], HasSubstr("cam0: on 55% of the object's contour"));
+  EXPECT_THAT(warnings[0], HasSubstr("lower the exposure"));
+  EXPECT_THAT(warnings[1], HasSubstr("cam2: on 15%"));
+  report.views.resize(2);
+  report.views[0].clipped_fraction = 0.0;
+  EXPECT_TRUE(SaturationWarnings(report).empty());
+}
+
 TEST(QualityReportTest, AbsPercentileIgnoresNaN) {
   const double nan = std::nan("");
   EXPECT_DOUBLE_EQ(AbsPercentile({-1, 2, nan, 3, -4, 5}, 0.5), 3.0);
@@ -405,8 +425,13 @@ TEST_F(QualityOnSynthTest, WritesJsonCsvAndSelfContainedHtml) {
   EXPECT_GT(first["statistic_sigma_px"].get<double>(), 0.0);
   EXPECT_LT(first["statistic_sigma_px"].get<double>(), 0.5);
   EXPECT_GT(first["found"].get<int>(), first["points"].get<int>() / 2);
+  EXPECT_GE(first["clipped"].get<int>(), 0);
+  EXPECT_LE(first["clipped"].get<int>(), first["points"].get<int>());
+  EXPECT_GE(json["views"][0]["clipped_fraction"].get<double>(), 0.0);
+  EXPECT_LE(json["views"][0]["clipped_fraction"].get<double>(), 1.0);
   const std::vector<std::string> csv = SplitLines(*ReadTextFile(out.File("quality.csv")));
   EXPECT_EQ(csv.size(), 1u + 6u);
+  EXPECT_THAT(csv[0], HasSubstr(",clipped"));
   const std::string html = *ReadTextFile(out.File("report.html"));
   EXPECT_THAT(html, HasSubstr("<svg"));
   EXPECT_THAT(html, HasSubstr("data:image/png;base64,"));
@@ -442,6 +467,14 @@ TEST_F(QualityOnSynthTest, WritesJsonCsvAndSelfContainedHtml) {
   EXPECT_THAT(*marked_html, HasSubstr("Bad frames (3): 1–2, 4"));
   EXPECT_THAT(*marked_html, HasSubstr("Cannot tell (1): 5"));
   EXPECT_THAT(*marked_html, HasSubstr("<title>frame 4: bad, p90"));
+  // A view whose contour is mostly saturated gets the warning, under the table.
+  EXPECT_THAT(html, Not(HasSubstr("class='saturation'")));
+  marked.views[0].clipped_fraction = 0.4;
+  const StatusOr<std::string> saturated_html =
+      QualityHtml(marked, *sequence, caster, *gt, out.path());
+  ASSERT_TRUE(saturated_html.ok()) << saturated_html.status().message();
+  EXPECT_THAT(*saturated_html, HasSubstr("<td>40%</td>"));
+  EXPECT_THAT(*saturated_html, HasSubstr("<ul class='saturation'><li>cam1: on 40% of"));
   for (int f = 0; f < 6; ++f) {
     EXPECT_THAT(*marked_html, HasSubstr(fmt::format("text-anchor='middle'>{}</text>", f)));
   }

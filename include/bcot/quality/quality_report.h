@@ -63,7 +63,8 @@
 //
 // Files (bcot/quality/quality_files.h; each written atomically):
 //   quality.json   options, verdict, reasons, per view summary, per frame and view numbers
-//   quality.csv    frame,view,median_px,p90_px,raw_median_px,raw_p90_px,points,found,bad
+//   quality.csv    frame,view,median_px,p90_px,raw_median_px,raw_p90_px,points,found,bad,
+//                  statistic_sigma_px,ambiguous,verifiable,clipped
 //   report.html    self-contained (inline SVG and CSS, base64 PNG thumbnails, no scripts
 //                  beyond a marker): error over time per view, the worst frames with the
 //                  contour drawn, the verdict and why
@@ -100,6 +101,8 @@ struct ViewFrameQuality {
   int found = 0;           // samples with a usable boundary
   int ambiguous = 0;       // samples whose posterior boundary had no clean image edge (step 4)
                            // or lay on an interior edge of the model (step 4b)
+  int clipped = 0;         // samples where the image saturates a colour channel across the
+                           // contour (CountClippedPoints in boundary_search.h)
   bool verifiable = true;  // false: "cannot tell" (see above); then bad is false too
   bool bad = false;
   double Statistic(QualityStatistic statistic) const {
@@ -116,6 +119,9 @@ struct ViewQualitySummary {
   double median_of_medians_px = 0.0;
   double worst_px = 0.0;          // largest statistic over frames (NaN frames skipped)
   std::vector<int> worst_frames;  // frame indices, worst first
+  // Share of the contour samples, over all frames, where the image saturates a colour channel
+  // across the contour (ViewFrameQuality::clipped); 0 without samples.
+  double clipped_fraction = 0.0;
 };
 
 struct QualityReport {
@@ -131,6 +137,20 @@ struct QualityReport {
   // empty: the quality layer does not know the options that produced the poses).
   Provenance provenance;
 };
+
+// Saturation. Where the image is saturated in every colour channel that shows the boundary (a
+// white object's lit side, a bright table mirrored in a glossy rim), no edge can be measured,
+// and the poses rest on the other rims, whose own small biases are then no longer balanced by
+// the saturated side's. On the Cycles renders of docs/benchmarks.md (2026-11-29): 1–9 % of a
+// view's contour in the scenes without a vertical bias, 28–55 % in the three whose object sits
+// 0.10–0.21 mm too high (the white bunny in both cameras, the two small bunnies in cam1). A view
+// whose ViewQualitySummary::clipped_fraction reaches this share gets a warning.
+constexpr double kSaturatedContourWarningFraction = 0.15;
+
+// One sentence per view of `report` whose clipped_fraction reaches
+// kSaturatedContourWarningFraction: how much of its contour is saturated, what that does, and
+// what to change in the capture. Empty when no view does.
+std::vector<std::string> SaturationWarnings(const QualityReport& report);
 
 // Measures one frame-view (steps 1–5 above): `image` (BGR, camera's size, CHECKed) with the
 // object at `cam_from_object` (O_t, mm); `linear` decodes its codes; `creases` are
