@@ -69,6 +69,10 @@ DEFAULTS = {
         "occluder_radius_mm": 9.0,    # its radius: 9 a finger, 20-25 two fingers or a thumb's base
         "occluder_length_mm": 80.0,
         "occluder_drop_mm": 55.0,     # how far below the object's centre it passes (cam0's image)
+        "occluder_color_rgb": [224, 172, 140],  # skin; the object's colour makes it hardest
+        "occluder_material": "diffuse",         # a material preset of object.material
+        "occluder_between_cameras": False,      # in front of the rig's middle: in both images
+        "occluder_distance_mm": 160.0,          # how far in front of the object it passes
     },
     "render": {
         # The beauty pass is rendered at `samples` in a window around the object and its
@@ -137,7 +141,7 @@ def load_spec(path, overrides=()):
     angle = spec["object"]["smooth_angle_deg"]
     if not isinstance(angle, (int, float)) or not 0.0 < angle <= 180.0:
         raise ValueError(f"{path}: object.smooth_angle_deg = {angle}, must be in (0, 180]")
-    for key in ("occluder_radius_mm", "occluder_length_mm"):
+    for key in ("occluder_radius_mm", "occluder_length_mm", "occluder_distance_mm"):
         value = spec["scene"][key]
         if not isinstance(value, (int, float)) or value <= 0.0:
             raise ValueError(f"{path}: scene.{key} = {value}, must be > 0")
@@ -416,17 +420,28 @@ def make_plan(spec):
 
     occluder = None
     if spec["scene"]["occluder"]:
-        # A finger-like capsule between cam0 and the object, sweeping across its lower part.
-        c = cameras[0]
+        # A finger-like capsule between cam0 (or, occluder_between_cameras, a viewpoint midway
+        # between the first two cameras) and the object, sweeping across it.
+        if spec["scene"]["occluder_between_cameras"]:
+            a, e = math.radians(cam["azimuth_deg"]), math.radians(cam["elevation_deg"])
+            eye = target + float(cam["distance_mm"]) * np.array(
+                [math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e)])
+            world_from_view = look_at_cv(eye, target)
+        else:
+            world_from_view = cameras[0]["world_from_cam"]
+        view_from_world = np.linalg.inv(world_from_view)
         positions = []
         for k in range(n):
-            pc = c["cam_from_rig"][:3, :3] @ centre[k] + c["cam_from_rig"][:3, 3]
+            pc = view_from_world[:3, :3] @ centre[k] + view_from_world[:3, 3]
             s = -1.0 + 2.0 * k / max(n - 1, 1)
-            p_cam = pc + np.array([s * 80.0, float(spec["scene"]["occluder_drop_mm"]), -160.0])
-            positions.append((c["world_from_cam"][:3, :3] @ p_cam + c["world_from_cam"][:3, 3]).tolist())
+            p_view = pc + np.array([s * 80.0, float(spec["scene"]["occluder_drop_mm"]),
+                                    -float(spec["scene"]["occluder_distance_mm"])])
+            positions.append((world_from_view[:3, :3] @ p_view + world_from_view[:3, 3]).tolist())
         occluder = {"positions_mm": positions,
                     "radius_mm": float(spec["scene"]["occluder_radius_mm"]),
-                    "length_mm": float(spec["scene"]["occluder_length_mm"])}
+                    "length_mm": float(spec["scene"]["occluder_length_mm"]),
+                    "color_rgb": [float(v) for v in spec["scene"]["occluder_color_rgb"]],
+                    "material": spec["scene"]["occluder_material"]}
 
     return {
         "frames": n, "fps": float(spec["fps"]),

@@ -226,7 +226,7 @@ def main():
         ob = bpy.context.active_object
         bpy.ops.object.shade_smooth()
         ob.name = "occluder"
-        ob.data.materials.append(material("skin", "diffuse", [224, 172, 140]))
+        ob.data.materials.append(material("occluder", o["material"], o["color_rgb"]))
         ob.rotation_euler = (0.4, 1.1, 0.0)
         for k, p in enumerate(o["positions_mm"]):
             ob.location = (np.asarray(p) * MM).tolist()
