@@ -55,10 +55,9 @@ std::vector<std::string> SaturationWarnings(const QualityReport& report) {
         "that shows the boundary, so no edge can be measured there and the poses rest on the "
         "other rims (on our renders, 28-55% of a view's contour saturated came with a bias of "
         "0.1-0.2 mm: the object off the truth the same way on every frame); lower the exposure, "
-        "the gain or the light "
-        "until the object and what it mirrors stay below full scale (the `clipped` column of "
-        "quality.csv counts such contour points per frame; README, \"Calibrating and recording a "
-        "rig\")",
+        "the gain or the light until the object and what it mirrors stay below full scale (the "
+        "`clipped` column of quality.csv counts such contour points per frame; README, "
+        "\"Calibrating and recording a rig\")",
         view.name, 100.0 * view.clipped_fraction));
   }
   return warnings;

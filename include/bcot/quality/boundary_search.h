@@ -42,13 +42,14 @@ RefinedOffsets RefineOffsetsOnEdges(const std::vector<ContourPoint>& contour,
                                     const std::vector<double>& offsets, const cv::Mat3b& image,
                                     const LinearTable& linear, const QualityOptions& options);
 
-// Exposure: how many of `contour`'s points lie where the image saturates. A point counts when a
-// colour channel reaches EdgeLineOptions::clip_level (linear, `linear` decoding the codes) at
-// any pixel the edge refinement of step 3b would read across the contour there (±(edge_search_px
-// + EdgeLineOptions::fit_half_px) along the normal, bilinear footprints). The edge fits leave such
-// a channel out, and a point whose contrast lies in clipped channels only has no measurable
-// edge, so the pose leans on the other rims; a point whose window leaves the image is not
-// counted.
+// Exposure: how many of `contour`'s points show their boundary only in saturated channels. A
+// channel is saturated at a point when it reaches EdgeLineOptions::clip_level (linear, `linear`
+// decoding the codes) at any pixel the edge refinement of step 3b would read across the contour
+// there (±(edge_search_px + EdgeLineOptions::fit_half_px) along the normal, bilinear footprints);
+// the edge fits leave such a channel out. A point counts when the colour contrast across it
+// reaches EdgeLineOptions::min_contrast but what the other channels keep of it does not: it has
+// no measurable edge, and the pose leans on the other rims. A point whose window leaves the image
+// is not counted.
 int CountClippedPoints(const std::vector<ContourPoint>& contour, const cv::Mat3b& image,
                        const LinearTable& linear, const QualityOptions& options);
 

@@ -101,8 +101,8 @@ struct ViewFrameQuality {
   int found = 0;           // samples with a usable boundary
   int ambiguous = 0;       // samples whose posterior boundary had no clean image edge (step 4)
                            // or lay on an interior edge of the model (step 4b)
-  int clipped = 0;         // samples where the image saturates a colour channel across the
-                           // contour (CountClippedPoints in boundary_search.h)
+  int clipped = 0;         // samples whose boundary shows only in saturated colour channels
+                           // (CountClippedPoints in boundary_search.h)
   bool verifiable = true;  // false: "cannot tell" (see above); then bad is false too
   bool bad = false;
   double Statistic(QualityStatistic statistic) const {
@@ -119,8 +119,8 @@ struct ViewQualitySummary {
   double median_of_medians_px = 0.0;
   double worst_px = 0.0;          // largest statistic over frames (NaN frames skipped)
   std::vector<int> worst_frames;  // frame indices, worst first
-  // Share of the contour samples, over all frames, where the image saturates a colour channel
-  // across the contour (ViewFrameQuality::clipped); 0 without samples.
+  // Share of the contour samples, over all frames, whose boundary shows only in saturated
+  // colour channels (ViewFrameQuality::clipped); 0 without samples.
   double clipped_fraction = 0.0;
 };
 
