@@ -12,7 +12,8 @@
 // --edge-offsets instead prints, per frame, the image edges measured along the contour normals
 // of BCOT's annotation (the edge stage's measurement, bcot/optim/edge_lines.h): how many lines
 // found an edge and the mean and median signed offset (px, + = the image edge lies outside the
-// annotation's contour), i.e. how the edge stage would move that pose.
+// annotation's contour), i.e. how the edge stage would move that pose, and the share of the
+// contour whose boundary shows only in saturated channels (the quality check's CountClippedPoints).
 //
 // Usage: real_bcot_bench --scene DIR --object NAME --model FILE --config FILE [--set k=v]...
 //        [--from-truth] [--overlay-dir DIR] [--edge-offsets] [--threads N]
@@ -39,6 +40,7 @@
 #include "bcot/optim/edge_lines.h"
 #include "bcot/optim/multi_view_tracker.h"
 #include "bcot/optim/silhouette.h"
+#include "bcot/quality/boundary_search.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
 
@@ -144,8 +146,9 @@ int main(int argc, char** argv) {
   edge_lines.crease_contours = false;  // the contour's own lines (header)
   if (edge_offsets) {
     std::printf(
-        "| frame | lines | found | mean offset (px) | median offset (px) |\n"
-        "|---:|---:|---:|---:|---:|\n");
+        "| frame | lines | found | mean offset (px) | median offset (px) | contour saturated |\n"
+        "|---:|---:|---:|---:|---:|---:|\n");
+    const LinearTable linear(edge_lines.response);
     double sum_of_means = 0.0;
     for (size_t frame = 0; frame < truth->size(); ++frame) {
       const cv::Mat image = cv::imread(image_path(frame), cv::IMREAD_COLOR);
@@ -163,8 +166,12 @@ int main(int argc, char** argv) {
       for (double offset : offsets) mean += offset / std::max<size_t>(1, offsets.size());
       std::sort(offsets.begin(), offsets.end());
       const double median = offsets.empty() ? 0.0 : offsets[offsets.size() / 2];
-      std::printf("| %zu | %d | %zu | %+.3f | %+.3f |\n", frame, lines->candidates, offsets.size(),
-                  mean, median);
+      // The quality check's count of contour points shown only in saturated channels.
+      const int clipped =
+          CountClippedPoints(silhouette.contour, cv::Mat3b(image), linear, QualityOptions());
+      std::printf("| %zu | %d | %zu | %+.3f | %+.3f | %.1f %% |\n", frame, lines->candidates,
+                  offsets.size(), mean, median,
+                  100.0 * clipped / std::max<size_t>(1, silhouette.contour.size()));
       sum_of_means += mean;
     }
     std::printf("\nmean over frames of the mean signed offset: %+.3f px\n",
