@@ -12,6 +12,7 @@
 #include "bcot/annotate/regenerate_report.h"
 #include "bcot/quality/quality_files.h"
 #include "bcot/quality/quality_options.h"
+#include "bcot/quality/quality_report.h"
 #include "commands.h"
 
 namespace bcot::tools {
@@ -36,8 +37,12 @@ int RunReport(const ReportFlags& flags) {
     std::fprintf(stderr, "bcot report: %s: %s; report: %s/report.html\n",
                  flags.annotation_dir.c_str(), report->accepted ? "accepted" : "rejected",
                  flags.annotation_dir.c_str());
-    for (const std::string& reason : report->reasons) {
-      if (!flags.quiet) std::fprintf(stderr, "  %s\n", reason.c_str());
+    if (!flags.quiet) {
+      for (const std::string& reason : report->reasons)
+        std::fprintf(stderr, "  %s\n", reason.c_str());
+      for (const std::string& note : SaturationWarnings(*report)) {
+        std::fprintf(stderr, "bcot report: note: %s\n", note.c_str());
+      }
     }
     return report->accepted ? 0 : kExitRejected;
   }

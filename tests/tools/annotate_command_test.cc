@@ -17,6 +17,7 @@ namespace bcot {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // A 3-frame 160×128 binocular sequence made once by `bcot synth`.
 class AnnotateCommandTest : public ::testing::Test {
@@ -224,6 +225,36 @@ TEST_F(AnnotateCommandTest, KeyframesAndFrameRangeFromTheCommandLine) {
                              &output),
             2);
   EXPECT_THAT(output, HasSubstr("--frames 2:7"));
+}
+
+// A white object lit beyond the sensor's full scale: its boundary shows only in saturated
+// channels on most of its contour, and `bcot annotate` and `bcot report` say so, naming the
+// cameras; the demo sequence gets no such note.
+TEST_F(AnnotateCommandTest, ASaturatedObjectGetsANoteNamingTheCameras) {
+  test::TempDir work;
+  test::Synthesize(work.File("seq"),
+                   "--set cameras.width=160 --set cameras.height=128 --set motion.num_frames=3"
+                   " --set render.object_samples_per_axis=2 --set 'object.color_rgb=[250,250,250]'"
+                   " --set sensor.exposure=4");
+  const std::string track = " --config " + test::SourcePath("configs/track.yaml");
+  std::string output;
+  const int code =
+      test::RunCommand(Annotate(work.File("seq") + " --out " + work.File("ann") + track), &output);
+  EXPECT_TRUE(code == 0 || code == 3) << output;
+  EXPECT_THAT(output, HasSubstr("bcot annotate: note: cam0: on "));
+  EXPECT_THAT(output, HasSubstr("bcot annotate: note: cam1: on "));
+  EXPECT_THAT(output, HasSubstr("saturated in every colour channel"));
+  test::RunCommand(test::BcotBinary() + " report " + work.File("ann"), &output);
+  EXPECT_THAT(output, HasSubstr("bcot report: note: cam0: on "));
+  // --quiet: only the verdict line.
+  test::RunCommand(test::BcotBinary() + " report --quiet " + work.File("ann"), &output);
+  EXPECT_THAT(output, Not(HasSubstr("note:")));
+
+  ASSERT_EQ(
+      test::RunCommand(Annotate(dir_->File("seq") + " --out " + work.File("demo") + track), &output),
+      0)
+      << output;
+  EXPECT_THAT(output, Not(HasSubstr("saturated")));
 }
 
 TEST_F(AnnotateCommandTest, BadConfigValueIsAConfigError) {
