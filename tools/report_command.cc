@@ -38,8 +38,9 @@ int RunReport(const ReportFlags& flags) {
                  flags.annotation_dir.c_str(), report->accepted ? "accepted" : "rejected",
                  flags.annotation_dir.c_str());
     if (!flags.quiet) {
-      for (const std::string& reason : report->reasons)
+      for (const std::string& reason : report->reasons) {
         std::fprintf(stderr, "  %s\n", reason.c_str());
+      }
       for (const std::string& note : SaturationWarnings(*report)) {
         std::fprintf(stderr, "bcot report: note: %s\n", note.c_str());
       }
