@@ -54,7 +54,7 @@ std::vector<std::string> SaturationWarnings(const QualityReport& report) {
         "{}: on {:.0f}% of the object's contour the image is saturated in every colour channel "
         "that shows the boundary, so no edge can be measured there and the poses rest on the "
         "other rims (on our renders, 28-55% of a view's contour saturated came with a bias of "
-        "0.1-0.2 mm: the object off the truth the same way on every frame); lower the exposure, "
+        "0.04-0.21 mm: the object off the truth the same way on every frame); lower the exposure, "
         "the gain or the light until the object and what it mirrors stay below full scale (the "
         "`clipped` column of quality.csv counts such contour points per frame; README, "
         "\"Calibrating and recording a rig\")",

@@ -143,7 +143,7 @@ struct QualityReport {
 // and the poses rest on the other rims, whose own small biases are then no longer balanced by
 // the saturated side's. On the Cycles renders of docs/benchmarks.md (2026-11-29): 1–9 % of a
 // view's contour in the scenes without a vertical bias, 28–55 % in the three whose object sits
-// 0.10–0.21 mm too high (the white bunny in both cameras, the two small bunnies in cam1). A view
+// 0.04–0.21 mm too high (the white bunny in both cameras, the two small bunnies in cam1). A view
 // whose ViewQualitySummary::clipped_fraction reaches this share gets a warning.
 constexpr double kSaturatedContourWarningFraction = 0.15;
 
