@@ -10,7 +10,8 @@ ends), the translation error and the true velocity (mm, mm per frame). Prints pe
 and standard deviation of the error, its correlation with the velocity and the slope of the
 least-squares line error = slope·velocity + intercept: a lag shows as a slope of a sizeable
 fraction of a frame with a high correlation, a bias that does not follow the motion as an
-intercept with none.
+intercept with none. Then the mean rotation error ‖φ‖ as it is, with each axis's mean taken
+out, and with all three: how much of the error is bias and how much scatter.
 """
 import sys
 
@@ -57,6 +58,16 @@ def main():
     omega = central(r_gt, n, lambda b, a: log_deg(b @ a.T))
     velocity = central(t_gt, n, lambda b, a: b - a)
     report("rotation (deg, rig axes)", phi, omega)
+    # How much of the rotation error the means are: the mean ‖φ‖ with each axis's mean taken
+    # out, and with all three.
+    norms = [np.linalg.norm(phi, axis=1).mean()]
+    for axis in range(3):
+        centred = phi.copy()
+        centred[:, axis] -= centred[:, axis].mean()
+        norms.append(np.linalg.norm(centred, axis=1).mean())
+    norms.append(np.linalg.norm(phi - phi.mean(0), axis=1).mean())
+    print("  mean |phi| %.4f; without the mean about x / y / z %.4f / %.4f / %.4f; "
+          "without all three %.4f" % tuple(norms))
     report("translation (mm, rig axes)", t_an - t_gt, velocity)
 
 
