@@ -645,16 +645,17 @@ StatusOr<AnnotationOutcome> AnnotateSequenceDir(const std::string& sequence_dir,
       QualityReport quality,
       MeasureQuality(sequence, caster, annotation.rig_from_object, annotation.view_names,
                      options.quality, annotation.image_response.response, &images));
-  std::vector<std::string> saturation = SaturationWarnings(quality);
   BCOT_ASSIGN_OR_RETURN(
       AnnotationOutcome outcome,
       FinishAnnotation(out_dir, sequence, caster, options, input_hash, annotation.rig_from_object,
                        std::move(quality), annotation.failed_frames));
-  outcome.notes = CaptureNotes(sequence);
+  // The capture and symmetry notes first, then FinishAnnotation's from the quality check.
+  std::vector<std::string> notes = CaptureNotes(sequence);
   for (std::string& note : SymmetryNotes(annotation, options.symmetry.detection.tolerance)) {
-    outcome.notes.push_back(std::move(note));
+    notes.push_back(std::move(note));
   }
-  for (std::string& note : saturation) outcome.notes.push_back(std::move(note));
+  notes.insert(notes.end(), outcome.notes.begin(), outcome.notes.end());
+  outcome.notes = std::move(notes);
   return outcome;
 }
 
@@ -715,6 +716,7 @@ StatusOr<AnnotationOutcome> FinishAnnotation(const std::string& out_dir, const S
   quality.provenance = CurrentProvenance(AnnotateConfigHash(options));
   BCOT_RETURN_IF_ERROR(WriteQualityFiles(out_dir, quality, sequence, caster, rig_from_object));
   AnnotationOutcome outcome;
+  outcome.notes = SaturationWarnings(quality);
   outcome.verdict = VerdictOf(quality);
   outcome.frames = static_cast<int>(rig_from_object.size());
   outcome.failed_frames = failed_frames;

@@ -275,6 +275,14 @@ int SideMeans(const std::vector<Eigen::Vector3d>& colors, double step_px, double
 
 }  // namespace
 
+Eigen::Vector3d UnclippedContrast(const EdgeLineSamples& samples, const EdgeLineOptions& options) {
+  Eigen::Vector3d d = samples.inside - samples.outside;
+  for (int c = 0; c < 3; ++c) {
+    if (samples.peak[c] >= options.clip_level) d[c] = 0.0;
+  }
+  return d;
+}
+
 bool SampleEdgeLine(const cv::Mat3b& image, const LinearTable& table, const Eigen::Vector2d& centre,
                     const Eigen::Vector2d& normal, const EdgeLineOptions& options,
                     EdgeLineSamples* samples) {
@@ -301,11 +309,7 @@ namespace {
 // The fit of sampled colours (the contrast direction, clipping and profile fit of the header).
 bool FitSampledEdge(const EdgeLineSamples& samples, const EdgeLineOptions& options, EdgeFit* fit,
                     int max_iterations = kEdgeFitIterations) {
-  Eigen::Vector3d d = samples.inside - samples.outside;
-  // Clipped channels carry no contrast (see "clipping" in the header).
-  for (int c = 0; c < 3; ++c) {
-    if (samples.peak[c] >= options.clip_level) d[c] = 0.0;
-  }
+  const Eigen::Vector3d d = UnclippedContrast(samples, options);
   if (!(d.norm() >= options.min_contrast) || d.norm() == 0.0) return false;
   const Eigen::Vector3d direction = d.normalized();
   const int half = static_cast<int>(samples.colors.size() / 2);

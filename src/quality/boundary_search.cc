@@ -105,14 +105,11 @@ int CountClippedPoints(const std::vector<ContourPoint>& contour, const cv::Mat3b
   EdgeLineSamples samples;
   for (const ContourPoint& point : contour) {
     if (!SampleEdgeLine(image, linear, point.pixel, point.normal, edge, &samples)) continue;
-    // The contrast across the contour (mean inside − mean outside), and what is left of it
-    // without the clipped channels, which the edge fits leave out.
-    const Eigen::Vector3d contrast = samples.inside - samples.outside;
-    Eigen::Vector3d unclipped = contrast;
-    for (int c = 0; c < 3; ++c) {
-      if (samples.peak[c] >= edge.clip_level) unclipped[c] = 0.0;
+    // A contrast across the contour that the edge fits lose to clipped channels.
+    if ((samples.inside - samples.outside).norm() >= edge.min_contrast &&
+        UnclippedContrast(samples, edge).norm() < edge.min_contrast) {
+      ++clipped;
     }
-    if (contrast.norm() >= edge.min_contrast && unclipped.norm() < edge.min_contrast) ++clipped;
   }
   return clipped;
 }

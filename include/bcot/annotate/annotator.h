@@ -172,7 +172,7 @@ StatusOr<ChromaSampling> ResolveChromaSampling(const Sequence& sequence, int ind
 
 // The end of a run, after the poses, frames.csv and config.resolved.yaml are written: the
 // quality files of `quality` (measured on `rig_from_object`; its provenance is set here), then
-// DONE.
+// DONE. The outcome's notes are the quality check's SaturationWarnings.
 StatusOr<AnnotationOutcome> FinishAnnotation(const std::string& out_dir, const Sequence& sequence,
                                              const RayCaster& caster,
                                              const AnnotateOptions& options,

@@ -156,6 +156,10 @@ struct EdgeLineSamples {
   Eigen::Vector3d peak = Eigen::Vector3d::Zero();
 };
 
+// The line's contrast d = inside − outside with its clipped channels (peak >= clip_level) set
+// to 0: what the fit measures the edge on (see "Clipping" above).
+Eigen::Vector3d UnclippedContrast(const EdgeLineSamples& samples, const EdgeLineOptions& options);
+
 // Samples the line through `centre` along the unit `normal` of `image` (codes decoded by
 // `table`); false when the window or its bilinear neighbours leave the image.
 bool SampleEdgeLine(const cv::Mat3b& image, const LinearTable& table, const Eigen::Vector2d& centre,
