@@ -10,6 +10,7 @@
 #include "bcot/core/chroma_sampling.h"
 #include "bcot/core/linear_rgb.h"
 #include "bcot/core/violations.h"
+#include "bcot/optim/edge_step_model.h"
 #include "bcot/render/occlusion_contour.h"
 
 namespace bcot {
@@ -67,82 +68,7 @@ Status EdgeLineOptions::Validate() const {
 
 namespace {
 
-constexpr double kInvSqrt2 = 0.70710678118654752440;
-constexpr double kInvSqrt2Pi = 0.39894228040143267794;
-
-double NormalCdf(double z) { return 0.5 * std::erfc(-z * kInvSqrt2); }
-
-constexpr int kParams = 6;
-using Params = Eigen::Matrix<double, kParams, 1>;
-using ParamsMatrix = Eigen::Matrix<double, kParams, kParams>;
-
-// The Gauss-Newton normal equations of one evaluation: JᵀJ and Jᵀr.
-struct NormalEquations {
-  ParamsMatrix jtj;
-  Params jtr;
-};
-
-// The samples a profile is fitted to, and the work arrays of one evaluation (sized once per
-// fit, so the iterations allocate nothing). j is the m×6 Jacobian; its columns of a (ones) and
-// g (u) are constant and set with the samples.
-struct FitSamples {
-  explicit FitSamples(int m)
-      : s(m),
-        u(m),
-        p(m),
-        z(m),
-        gauss(m),
-        t(m),
-        tail(m),
-        cdf(m),
-        pdf(m),
-        ramp(m),
-        residual(m),
-        step_slope(m),
-        j(m, kParams) {}
-
-  Eigen::ArrayXd s;  // offsets along the line (px)
-  Eigen::ArrayXd u;  // s − μ0
-  Eigen::ArrayXd p;  // profile values
-  Eigen::ArrayXd z, gauss, t, tail, cdf, pdf, ramp, residual, step_slope;
-  Eigen::Matrix<double, Eigen::Dynamic, kParams> j;
-};
-
-// Residuals of the step model with parameters x = (a, g, b, μ, w, k) and, optionally, the
-// normal equations of its Jacobian: a + g·u + b·Φ(z) + k·w·R(z), u = s − μ0, z = (s − μ)/w,
-// R(z) = z·Φ(z) + φ(z) (the Gaussian-blurred kink max(0, s − μ)/w: the outside trend differs
-// from the inside one by k). Returns the residual sum of squares.
-//
-// Φ(z) and φ(z) come from one exponential: Φ(z) = ½·erfc(|z|/√2) for z <= 0, else 1 − that,
-// with erfc(x) = t·(a1 + t·(a2 + t·(a3 + t·(a4 + t·a5))))·e^{−x²}, t = 1/(1 + p·x), x >= 0
-// (Abramowitz & Stegun 7.1.26, |error| <= 1.5e-7, so |ΔΦ| <= 7.5e-8: far below the profile's
-// noise), and e^{−x²} = e^{−z²/2} = √(2π)·φ(z). Array expressions over all samples, so the
-// exponentials are vectorised.
-double Residuals(const Params& x, FitSamples* f, NormalEquations* normal) {
-  constexpr double kP = 0.3275911;
-  constexpr double kA1 = 0.254829592, kA2 = -0.284496736, kA3 = 1.421413741;
-  constexpr double kA4 = -1.453152027, kA5 = 1.061405429;
-  const double inv_w = 1.0 / x[4];
-  f->z = (f->s - x[3]) * inv_w;
-  f->gauss = (-0.5 * f->z.square()).exp();
-  f->t = (1.0 + (kP * kInvSqrt2) * f->z.abs()).inverse();
-  f->tail = 0.5 * f->t * (kA1 + f->t * (kA2 + f->t * (kA3 + f->t * (kA4 + f->t * kA5)))) *
-            f->gauss;  // ½·erfc(|z|/√2)
-  f->cdf = (f->z <= 0.0).select(f->tail, 1.0 - f->tail);
-  f->pdf = kInvSqrt2Pi * f->gauss;
-  f->ramp = f->z * f->cdf + f->pdf;
-  f->residual = x[0] + x[1] * f->u + x[2] * f->cdf + (x[5] * x[4]) * f->ramp - f->p;
-  if (normal != nullptr) {
-    f->step_slope = (x[2] * inv_w) * f->pdf;  // b·φ(z)/w
-    f->j.col(2) = f->cdf.matrix();
-    f->j.col(3) = (-f->step_slope - x[5] * f->cdf).matrix();
-    f->j.col(4) = (-f->step_slope * f->z + x[5] * f->pdf).matrix();
-    f->j.col(5) = (x[4] * f->ramp).matrix();
-    normal->jtj.noalias() = f->j.transpose().lazyProduct(f->j);
-    normal->jtr.noalias() = f->j.transpose().lazyProduct(f->residual.matrix());
-  }
-  return f->residual.square().sum();
-}
+double NormalCdf(double z) { return 0.5 * std::erfc(-z * 0.70710678118654752440); }
 
 }  // namespace
 
@@ -175,48 +101,45 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
   }
   const int m = last - first + 1;
   if (m < 8) return false;
-  FitSamples samples(m);
-  for (int i = 0; i < m; ++i) samples.s[i] = first_offset_px + (first + i) * h;
-  samples.u = samples.s - mu0;
-  samples.p = Eigen::Map<const Eigen::ArrayXd>(values.data() + first, m);
-  // The Jacobian's columns of a and g do not depend on the parameters.
-  samples.j.col(0).setOnes();
-  samples.j.col(1) = samples.u.matrix();
+  const Eigen::ArrayXd offsets = first_offset_px + h * Eigen::ArrayXd::LinSpaced(m, first, last);
+  EdgeStepModel model(offsets, mu0, Eigen::Map<const Eigen::ArrayXd>(values.data() + first, m));
 
   // Initial (a, g, b) by linear least squares at μ = μ0, w = 0.7, k = 0.
-  Params x;
+  EdgeStepParams x;
   x << 0.0, 0.0, 0.0, mu0, 0.7, 0.0;
   {
     Eigen::MatrixXd a(m, 3);
-    a.leftCols(2) = samples.j.leftCols(2);
-    for (int i = 0; i < m; ++i) a(i, 2) = NormalCdf((samples.s[i] - x[3]) / x[4]);
-    const Eigen::Vector3d linear = a.colPivHouseholderQr().solve(samples.p.matrix());
-    x[0] = linear[0];
-    x[1] = linear[1];
-    x[2] = linear[2];
+    a.col(0).setOnes();
+    a.col(1) = (offsets - mu0).matrix();
+    for (int i = 0; i < m; ++i) a(i, 2) = NormalCdf((offsets[i] - x[3]) / x[4]);
+    const Eigen::Vector3d linear =
+        a.colPivHouseholderQr().solve(Eigen::Map<const Eigen::VectorXd>(values.data() + first, m));
+    x.head<3>() = linear;
   }
-  NormalEquations normal, normal_new;
-  double rss = Residuals(x, &samples, &normal);
+  EdgeStepMatrix jtj, jtj_new;
+  EdgeStepParams jtr, jtr_new;
+  double rss = model.Evaluate(x, &jtj, &jtr);
   double lambda = 1e-3;
   bool converged = false;
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
-    ParamsMatrix damped = normal.jtj;
-    damped.diagonal() += lambda * normal.jtj.diagonal().cwiseMax(1e-12);
+    EdgeStepMatrix damped = jtj;
+    damped.diagonal() += lambda * jtj.diagonal().cwiseMax(1e-12);
     // λ > 0 makes the damped matrix positive definite; LDLT is the fallback for round-off.
-    const Eigen::LLT<ParamsMatrix> cholesky(damped);
-    const Params delta = cholesky.info() == Eigen::Success
-                             ? Params(-cholesky.solve(normal.jtr))
-                             : Params(-damped.ldlt().solve(normal.jtr));
-    Params candidate = x + delta;
+    const Eigen::LLT<EdgeStepMatrix> cholesky(damped);
+    const EdgeStepParams delta = cholesky.info() == Eigen::Success
+                                     ? EdgeStepParams(-cholesky.solve(jtr))
+                                     : EdgeStepParams(-damped.ldlt().solve(jtr));
+    EdgeStepParams candidate = x + delta;
     if (!candidate.allFinite()) return false;
     candidate[4] = std::max(candidate[4], 0.05);
     // The normal equations cost little beside Φ and φ, which they share: evaluated with the
     // residuals, they are ready when the step is accepted.
-    const double rss_new = Residuals(candidate, &samples, &normal_new);
+    const double rss_new = model.Evaluate(candidate, &jtj_new, &jtr_new);
     if (rss_new <= rss) {
       x = candidate;
       rss = rss_new;
-      normal = normal_new;
+      jtj = jtj_new;
+      jtr = jtr_new;
       lambda = std::max(lambda * 0.3, 1e-9);
       if (std::abs(delta[3]) < 1e-4 && std::abs(delta[4]) < 1e-4) {
         converged = true;
@@ -231,9 +154,9 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
     }
   }
   if (!converged) return false;
-  Eigen::FullPivLU<ParamsMatrix> lu(normal.jtj);
+  Eigen::FullPivLU<EdgeStepMatrix> lu(jtj);
   if (!lu.isInvertible()) return false;
-  const double noise_variance = rss / std::max(1, m - kParams);
+  const double noise_variance = rss / std::max(1, m - kEdgeStepParams);
   const double variance = noise_variance * lu.inverse()(3, 3);
   fit->mean_px = x[3];
   fit->width_px = x[4];

@@ -24,7 +24,7 @@
 //             between two linear trends with different slopes (the shaded rim inside, the
 //             background outside), blurred by a Gaussian of width w (Φ, φ the normal CDF and
 //             density): exact for piecewise-linear sides, so a shading ramp up to the edge does
-//             not move μ;
+//             not move μ (the model, its Jacobian and normal equations: edge_step_model.h);
 //   variance  σ_μ² = (RSS / (m − 6))·[(JᵀJ)⁻¹]_μμ, floored at min_sigma_px².
 //
 // Clipping. A camera's optics blur the light before its pixels saturate, so where a channel
