@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "bcot/core/chroma_sampling.h"
@@ -302,6 +303,38 @@ int FloorToMultiple(int value, int factor) {
   return static_cast<int>(std::floor(static_cast<double>(value) / factor)) * factor;
 }
 
+// The pixels a simulation of the line through `centre` along `normal` must draw: those its
+// samples rest on (SamplePatchLine: each sample's pixel and the next one across and down), grown
+// by the codec's reach (a decoded pixel's chroma comes from its own block's mean and the next
+// block's along each axis: source pixels up to 2 away), rounded out to whole blocks. The decoded
+// values of the sampled pixels are then those of an unbounded drawing (the blocks at the patch's
+// border, whose upsampling lacks a neighbour, are not sampled). Returns the patch's pixel (0, 0)
+// in `origin` and its size.
+cv::Size LinePatch(const Eigen::Vector2d& centre, const Eigen::Vector2d& normal,
+                   const EdgeLineOptions& options, const ChromaSampling& sampling,
+                   Eigen::Vector2i* origin) {
+  constexpr int kCodecReachPx = 2;
+  const double h = options.step_px;
+  const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
+  Eigen::Vector2i low(std::numeric_limits<int>::max(), std::numeric_limits<int>::max());
+  Eigen::Vector2i high(std::numeric_limits<int>::min(), std::numeric_limits<int>::min());
+  for (const int k : {-half, half}) {  // the samples' pixels are monotonic along the line
+    const Eigen::Vector2d p = centre + k * h * normal;
+    const Eigen::Vector2i pixel(static_cast<int>(std::floor(p.x())),
+                                static_cast<int>(std::floor(p.y())));
+    low = low.cwiseMin(pixel);
+    high = high.cwiseMax(pixel + Eigen::Vector2i::Ones());
+  }
+  low -= Eigen::Vector2i::Constant(kCodecReachPx);
+  high += Eigen::Vector2i::Constant(kCodecReachPx);
+  *origin = Eigen::Vector2i(FloorToMultiple(low.x(), sampling.horizontal),
+                            FloorToMultiple(low.y(), sampling.vertical));
+  // The end of high's block.
+  const Eigen::Vector2i end(FloorToMultiple(high.x(), sampling.horizontal) + sampling.horizontal,
+                            FloorToMultiple(high.y(), sampling.vertical) + sampling.vertical);
+  return cv::Size(end.x() - origin->x(), end.y() - origin->y());
+}
+
 // `edge` drawn as BGR codes on the pixels of an image around the line through `centre` along
 // `normal`, its pixel (0, 0) at `origin`.
 cv::Mat3d DrawIdealEdge(const IdealEdge& edge, const LinearTable& table,
@@ -344,15 +377,8 @@ bool ChromaSubsamplingShift(const EdgeLineSamples& samples, const EdgeFit& fit,
       !PlateauColours(samples, fit.mean_px, options, &observed_inside, &observed_outside)) {
     return false;
   }
-  // The patch reaches every pixel a sample rests on (window + 1) plus the codec's reach (a
-  // decoded pixel's chroma comes from its own block and the next ones across and down: pixels
-  // up to 2 away), rounded out to whole blocks.
-  const int margin = static_cast<int>(std::ceil(options.window_px)) + 3;
-  const int cx = static_cast<int>(std::floor(centre.x()));
-  const int cy = static_cast<int>(std::floor(centre.y()));
-  const Eigen::Vector2i origin(FloorToMultiple(cx - margin, sampling.horizontal),
-                               FloorToMultiple(cy - margin, sampling.vertical));
-  const cv::Size size(cx + margin + 2 - origin.x(), cy + margin + 2 - origin.y());
+  Eigen::Vector2i origin;
+  const cv::Size size = LinePatch(centre, normal, options, sampling, &origin);
   // The ideal edge whose decoded image looks like the observed line to the fit (the same
   // centre, blur width and colours beyond the blur), found by fixed-point steps from the observed
   // values (indirect inference); the shift is then the one the codec causes to that edge,
