@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Precision of bcot on physically based (Blender Cycles) renders, issue 12.
-#   scripts/bench_pbr.sh [SPEC.json ...]
+#   scripts/bench_pbr.sh [SPEC.json | SEQUENCE_DIR ...]
+# A directory argument is a sequence rendered before (scripts/pbr_synth.sh SPEC DIR, with gt/):
+# it is measured as it is, under its directory's name, and never rendered again.
 # Default: the bench scenes of configs/pbr/ (bunny plastic, spool dark + JPEG, pinion metal
 # with a moving key light + JPEG, large bright bunny in soft light + JPEG, small glossy and small
 # diffuse bunny turning fast + JPEG, bunny turning 5–8° per frame with motion blur + JPEG, the
@@ -40,11 +42,17 @@ checks=$root/gt_checks.txt
 : >"$checks"
 read -r -a extra <<<"${BCOT_PBR_ANNOTATE_ARGS:-}"
 for spec in "${specs[@]}"; do
-  key=$($py scripts/pbr/spec_key.py "$spec")
-  seq=$root/$key
-  if [ ! -d "$seq" ]; then
-    echo "bench_pbr: rendering $seq" >&2
-    scripts/pbr_synth.sh "$spec" "$seq" >&2
+  if [ -d "$spec" ]; then
+    [ -d "$spec/gt" ] || { echo "bench_pbr: $spec has no gt/ (not a rendered sequence)" >&2; exit 2; }
+    seq=${spec%/}
+    key=$(basename "$seq")
+  else
+    key=$($py scripts/pbr/spec_key.py "$spec")
+    seq=$root/$key
+    if [ ! -d "$seq" ]; then
+      echo "bench_pbr: rendering $seq" >&2
+      scripts/pbr_synth.sh "$spec" "$seq" >&2
+    fi
   fi
   frames=$(ls "$seq/cam0" | wc -l)
   { echo "== $key ($(cat "$seq/pbr_timing.json"))"; build/tests/bench/pbr_gt_check "$seq"; } >>"$checks"
