@@ -69,7 +69,10 @@ Status EdgeLineOptions::Validate() const {
 
 namespace {
 
-double NormalCdf(double z) { return 0.5 * std::erfc(-z * 0.70710678118654752440); }
+constexpr double kInvSqrt2 = 0.70710678118654752440;
+
+// The exact normal CDF (the fit's start; EdgeStepModel approximates it).
+double NormalCdf(double z) { return 0.5 * std::erfc(-z * kInvSqrt2); }
 
 }  // namespace
 
