@@ -139,6 +139,8 @@ def main():
     parser.add_argument("--sampling", choices=["444", "420"], default="444")
     parser.add_argument("--quality", type=int, default=90)
     parser.add_argument("--iters", type=int, default=20)
+    parser.add_argument("--smoothing", type=float, default=1.0,
+                        help="codes: gradients below it are penalised quadratically (Huber-like)")
     args = parser.parse_args()
     factor = 2 if args.sampling == "420" else 1
     luma_table = jv.scaled_table(jv.LUMINANCE_TABLE, args.quality)
@@ -157,7 +159,7 @@ def main():
                 mask = cv2.imread(os.path.join(args.src, "gt", "mask", camera, name),
                                   cv2.IMREAD_UNCHANGED)
                 planes = tv_decode(channels, planes, object_box(mask, y.shape, 8 * factor),
-                                   args.iters)
+                                   args.iters, smoothing=args.smoothing)
             cv2.imwrite(os.path.join(args.dst, camera, name), jv.to_bgr(*planes))
 
 
