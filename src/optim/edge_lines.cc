@@ -74,6 +74,12 @@ constexpr double kInvSqrt2 = 0.70710678118654752440;
 // The exact normal CDF (the fit's start; EdgeStepModel approximates it).
 double NormalCdf(double z) { return 0.5 * std::erfc(-z * kInvSqrt2); }
 
+// The samples on each side of a line's centre: offsets k·step_px for |k| <= this, within
+// window_px (header, "profile").
+int SamplesPerSide(const EdgeLineOptions& options) {
+  return static_cast<int>(std::floor(options.window_px / options.step_px + 1e-9));
+}
+
 }  // namespace
 
 bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
@@ -214,7 +220,7 @@ bool SampleEdgeLine(const cv::Mat3b& image, const LinearTable& table, const Eige
                     const Eigen::Vector2d& normal, const EdgeLineOptions& options,
                     EdgeLineSamples* samples) {
   const double h = options.step_px;
-  const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
+  const int half = SamplesPerSide(options);
   if (!CanSampleBilinear(image.size(), centre - half * h * normal) ||
       !CanSampleBilinear(image.size(), centre + half * h * normal)) {
     return false;
@@ -277,7 +283,7 @@ EdgeLineSamples SamplePatchLine(const cv::Mat3d& patch, const Eigen::Vector2i& o
                                 const Eigen::Vector2d& normal, const Eigen::Vector3d& peak,
                                 const EdgeLineOptions& options) {
   const double h = options.step_px;
-  const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
+  const int half = SamplesPerSide(options);
   const auto linear = [&](int x, int y) {
     const cv::Vec3d& px = patch(y - origin.y(), x - origin.x());
     return Eigen::Vector3d(table.Decode(px[2]), table.Decode(px[1]), table.Decode(px[0]));
@@ -318,7 +324,7 @@ cv::Size LinePatch(const Eigen::Vector2d& centre, const Eigen::Vector2d& normal,
                    Eigen::Vector2i* origin) {
   constexpr int kCodecReachPx = 2;
   const double h = options.step_px;
-  const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
+  const int half = SamplesPerSide(options);
   Eigen::Vector2i low(std::numeric_limits<int>::max(), std::numeric_limits<int>::max());
   Eigen::Vector2i high(std::numeric_limits<int>::min(), std::numeric_limits<int>::min());
   for (const int k : {-half, half}) {  // the samples' pixels are monotonic along the line
@@ -508,7 +514,7 @@ void MeasureEdgeLines(const LineAnchors& anchors, WindowOnMask rule, const cv::M
                       const cv::Mat1b& mask, const EdgeLineOptions& options,
                       CorrespondenceLines* result) {
   const double h = options.step_px;
-  const int half = static_cast<int>(std::floor(options.window_px / h + 1e-9));
+  const int half = SamplesPerSide(options);
   for (int j = 0; j < anchors.size(); ++j) {
     const ContourPoint& point = anchors.point(j);
     ++result->candidates;
