@@ -49,25 +49,6 @@ def idct_blocks(d):
     return b.transpose(0, 2, 1, 3).reshape(nh * 8, nw * 8)
 
 
-def mean2(x):
-    h, w = x.shape
-    return x.reshape(h // 2, 2, w // 2, 2).mean((1, 3))
-
-
-def fancy_upsample(half):
-    """libjpeg's h2v2 fancy upsampling (weights 9/3/3/1, edges replicated)."""
-    padded = np.pad(half, 1, mode="edge")
-    hh, ww = half.shape
-    out = np.empty((2 * hh, 2 * ww))
-    for dy in (0, 1):
-        for dx in (0, 1):
-            vy, vx = (-1 if dy == 0 else 1), (-1 if dx == 0 else 1)
-            out[dy::2, dx::2] = (9 * padded[1:-1, 1:-1] + 3 * padded[1:-1, 1 + vx:ww + 1 + vx] +
-                                 3 * padded[1 + vy:hh + 1 + vy, 1:-1] +
-                                 padded[1 + vy:hh + 1 + vy, 1 + vx:ww + 1 + vx]) / 16
-    return out
-
-
 def gradient(z):
     gx, gy = np.zeros_like(z), np.zeros_like(z)
     gx[:, :-1] = z[:, 1:] - z[:, :-1]
@@ -89,12 +70,12 @@ class Channel:
 
     def __init__(self, values, table, factor):
         self.table, self.factor = table, factor
-        plane = mean2(values) if factor == 2 else values
+        plane = jv.mean2x2(values) if factor == 2 else values
         self.coefficients = np.round(dct_blocks(plane - 128.0) / table)
 
     def plain(self):
         plane = idct_blocks(self.coefficients * self.table) + 128.0
-        return fancy_upsample(plane) if self.factor == 2 else plane
+        return jv.fancy_upsample(plane) if self.factor == 2 else plane
 
     def project(self, values, box):
         """The nearest values (in the box, full resolution) whose coefficients lie in the
@@ -103,7 +84,7 @@ class Channel:
         f = self.factor
         c = self.coefficients[y0 // (8 * f):y1 // (8 * f), x0 // (8 * f):x1 // (8 * f)]
         low, high = (c - 0.5) * self.table, (c + 0.5) * self.table
-        plane = mean2(values) if f == 2 else values
+        plane = jv.mean2x2(values) if f == 2 else values
         projected = idct_blocks(np.clip(dct_blocks(plane - 128.0), low, high)) + 128.0
         if f == 1:
             return projected

@@ -78,10 +78,15 @@ def quantise(channel, table):
     return out[:h, :w] + 128
 
 
-def subsample(channel):
-    """2x2 average, then libjpeg's h2v2 fancy upsampling (edges replicated)."""
+def mean2x2(channel):
+    """The means of the 2x2 blocks (an odd last row or column left out)."""
     h, w = channel.shape
-    half = channel[:h - h % 2, :w - w % 2].reshape(h // 2, 2, w // 2, 2).mean((1, 3))
+    return channel[:h - h % 2, :w - w % 2].reshape(h // 2, 2, w // 2, 2).mean((1, 3))
+
+
+def fancy_upsample(half):
+    """libjpeg's h2v2 fancy upsampling: weights 9/3/3/1 of the nearest four samples, edges
+    replicated."""
     p = np.pad(half, 1, mode="edge")
     hh, ww = half.shape
     out = np.empty((2 * hh, 2 * ww))
@@ -93,8 +98,14 @@ def subsample(channel):
             above_below = p[1 + vy:hh + 1 + vy, 1:-1]
             diagonal = p[1 + vy:hh + 1 + vy, 1 + vx:ww + 1 + vx]
             out[dy::2, dx::2] = (9 * nearest + 3 * beside + 3 * above_below + diagonal) / 16
+    return out
+
+
+def subsample(channel):
+    """2x2 average, then libjpeg's h2v2 fancy upsampling (an odd last row or column kept)."""
+    out = fancy_upsample(mean2x2(channel))
     result = channel.copy()
-    result[:2 * hh, :2 * ww] = out
+    result[:out.shape[0], :out.shape[1]] = out
     return result
 
 
