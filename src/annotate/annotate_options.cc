@@ -173,6 +173,17 @@ void DeclareLines(OptionSchema<AnnotateOptions>* s) {
                    ? "must be > 0 when the sparse energy is used"
                    : "";
       });
+  s->Add(
+       "lines.viewpoint_model",
+       [](auto& o) -> auto& { return o.tracker.frame.lines_from_viewpoint_model; }, "",
+       "region rounds' lines along a sparse viewpoint model built once per mesh, without a render "
+       "per round (cost.energy sparse only; docs/sparse_viewpoint_model.md)")
+      .Check([](const AnnotateOptions& o) {
+        return o.tracker.frame.lines_from_viewpoint_model &&
+                       o.tracker.frame.energy != RegionEnergy::kSparse
+                   ? "must be false unless cost.energy is sparse"
+                   : "";
+      });
 }
 
 void DeclareEdge(OptionSchema<AnnotateOptions>* s) {

@@ -24,6 +24,7 @@
 #include "bcot/annotate/splice.h"
 #include "bcot/annotate/tracking_plan.h"
 #include "bcot/core/annotation_poses.h"
+#include "bcot/core/content_hash.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/image_cache.h"
 #include "bcot/core/image_io.h"
@@ -108,24 +109,6 @@ StatusOr<std::map<int, Eigen::Isometry3d>> AnchorPoses(const Sequence& sequence,
   }
   return anchors;
 }
-
-// FNV-1a, 64 bit: a stable content hash (not cryptographic; it detects changed inputs).
-class Fnv1a {
- public:
-  // Adds `bytes` and a field separator, so ("ab", "c") and ("a", "bc") differ.
-  void Add(const std::string& bytes) {
-    for (unsigned char byte : bytes) Mix(byte);
-    Mix(0xff);
-  }
-  std::string Hex() const { return fmt::format("{:016x}", hash_); }
-
- private:
-  void Mix(unsigned char byte) {
-    hash_ ^= byte;
-    hash_ *= 1099511628211ULL;
-  }
-  uint64_t hash_ = 14695981039346656037ULL;
-};
 
 // Indices into the rig of the cameras the options' `views` ask for, with their weights and
 // chroma sampling.
@@ -241,13 +224,13 @@ std::string FormatFramesCsv(const SequenceAnnotation& annotation) {
 }
 
 std::string AnnotateConfigHash(const AnnotateOptions& options) {
-  Fnv1a hash;
+  ContentHash hash;
   hash.Add(FormatAnnotateOptions(options));
   return hash.Hex();
 }
 
 StatusOr<std::string> SequenceInputHash(const Sequence& sequence) {
-  Fnv1a hash;
+  ContentHash hash;
   const std::string dir = sequence.dir;
   std::vector<std::string> paths = {dir + "/rig.yaml", dir + "/object.yaml",
                                     sequence.object.mesh_path};

@@ -26,10 +26,11 @@ struct PendingLine {
   int first_query = 0;  // index into the bilinear query list
 };
 
-// Extent (px, >= 0) from `centre` along `direction` over which the mask keeps the value
-// `inside`, the bilinear footprint stays in the image, capped at `limit`.
-double Extent(const cv::Mat1b& mask, const Camera& camera, const Eigen::Vector2d& centre,
-              const Eigen::Vector2d& direction, bool inside, double limit) {
+// Extent (px, >= 0) from `centre` along `direction` over which `keeps(x, y)` holds at the
+// nearest pixel and the bilinear footprint stays in the image, capped at `limit`.
+template <typename Keeps>
+double Extent(const Camera& camera, const Eigen::Vector2d& centre, const Eigen::Vector2d& direction,
+              double limit, const Keeps& keeps) {
   double reached = 0.0;
   for (double t = kMaskMarginPx; t <= limit + kMaskMarginPx; t += kWalkStepPx) {
     const Eigen::Vector2d p = centre + t * direction;
@@ -39,11 +40,24 @@ double Extent(const cv::Mat1b& mask, const Camera& camera, const Eigen::Vector2d
     }
     const int x = static_cast<int>(std::lround(p.x()));
     const int y = static_cast<int>(std::lround(p.y()));
-    if ((mask(y, x) != 0) != inside) return std::min(limit, std::max(0.0, t - kMaskMarginPx));
+    if (!keeps(x, y)) return std::min(limit, std::max(0.0, t - kMaskMarginPx));
     reached = t;
   }
   return std::min(limit, reached);
 }
+
+// Extent over which `mask` keeps the value `inside`.
+double MaskExtent(const cv::Mat1b& mask, const Camera& camera, const Eigen::Vector2d& centre,
+                  const Eigen::Vector2d& direction, bool inside, double limit) {
+  return Extent(camera, centre, direction, limit,
+                [&](int x, int y) { return (mask(y, x) != 0) == inside; });
+}
+
+// How far a line through a contour point may extend (px): inward and outward.
+struct LineSides {
+  double inside_px = 0.0;
+  double outside_px = 0.0;
+};
 
 }  // namespace
 
@@ -197,10 +211,12 @@ LineAnchors::LineAnchors(const RayCaster& caster, const Camera& camera,
       cam_from_objcentre_(cam_from_rig * rig_from_objcentre),
       size_(std::min(num_lines, static_cast<int>(contour.size()))) {}
 
-const ContourPoint& LineAnchors::point(int j) const {
+size_t LineAnchors::index(int j) const {
   BCOT_CHECK(j >= 0 && j < size_);
-  return contour_[static_cast<size_t>((j + 0.5) * contour_.size() / size_)];
+  return static_cast<size_t>((j + 0.5) * contour_.size() / size_);
 }
+
+const ContourPoint& LineAnchors::point(int j) const { return contour_[index(j)]; }
 
 bool LineAnchors::Anchor(int j, CorrespondenceLine* line) const {
   const ContourPoint& p = point(j);
@@ -213,16 +229,20 @@ bool LineAnchors::Anchor(int j, CorrespondenceLine* line) const {
   return true;
 }
 
-StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
-    const RayCaster& caster, const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
-    const Eigen::Isometry3d& rig_from_objcentre, const cv::Mat3b& image,
-    const ColorModel& color_model, const Silhouette& silhouette,
-    const CorrespondenceLineOptions& options) {
-  BCOT_RETURN_IF_ERROR(options.Validate());
-  BCOT_RETURN_IF_ERROR(CheckSilhouetteInputs(camera, image, silhouette));
+namespace {
+
+// The lines of one view along `contour`: sides(i) gives the extents of contour sample i's line,
+// at most options.half_length_px each.
+template <typename Sides>
+CorrespondenceLines BuildLines(const RayCaster& caster, const Camera& camera,
+                               const Eigen::Isometry3d& cam_from_rig,
+                               const Eigen::Isometry3d& rig_from_objcentre, const cv::Mat3b& image,
+                               const ColorModel& color_model,
+                               const std::vector<ContourPoint>& contour,
+                               const CorrespondenceLineOptions& options, const Sides& sides) {
   CorrespondenceLines result;
   result.rig_from_objcentre = rig_from_objcentre;
-  const LineAnchors anchors(caster, camera, cam_from_rig, rig_from_objcentre, silhouette,
+  const LineAnchors anchors(caster, camera, cam_from_rig, rig_from_objcentre, contour,
                             options.num_lines);
   const double h = options.scale_px;
   // Sub-points per sample segment (bilinear posteriors averaged over the segment).
@@ -237,10 +257,9 @@ StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
       ++result.rejected_off_image;
       continue;
     }
-    const double inside_px = Extent(silhouette.mask, camera, point.pixel, -point.normal,
-                                    /*inside=*/true, options.half_length_px);
-    const double outside_px = Extent(silhouette.mask, camera, point.pixel, point.normal,
-                                     /*inside=*/false, options.half_length_px);
+    const LineSides line_sides = sides(anchors.index(j));
+    const double inside_px = line_sides.inside_px;
+    const double outside_px = line_sides.outside_px;
     if (inside_px < options.min_side_px || outside_px < options.min_side_px) {
       ++result.rejected_short;
       continue;
@@ -306,6 +325,55 @@ StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
     result.lines.push_back(line);
   }
   return result;
+}
+
+}  // namespace
+
+StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
+    const RayCaster& caster, const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
+    const Eigen::Isometry3d& rig_from_objcentre, const cv::Mat3b& image,
+    const ColorModel& color_model, const Silhouette& silhouette,
+    const CorrespondenceLineOptions& options) {
+  BCOT_RETURN_IF_ERROR(options.Validate());
+  BCOT_RETURN_IF_ERROR(CheckSilhouetteInputs(camera, image, silhouette));
+  const std::vector<ContourPoint>& contour = silhouette.contour;
+  return BuildLines(caster, camera, cam_from_rig, rig_from_objcentre, image, color_model, contour,
+                    options, [&](size_t i) {
+                      const ContourPoint& point = contour[i];
+                      return LineSides{
+                          MaskExtent(silhouette.mask, camera, point.pixel, -point.normal,
+                                     /*inside=*/true, options.half_length_px),
+                          MaskExtent(silhouette.mask, camera, point.pixel, point.normal,
+                                     /*inside=*/false, options.half_length_px)};
+                    });
+}
+
+StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
+    const RayCaster& caster, const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
+    const Eigen::Isometry3d& rig_from_objcentre, const cv::Mat3b& image,
+    const ColorModel& color_model, const std::vector<ProjectedContourPoint>& points,
+    const CorrespondenceLineOptions& options) {
+  BCOT_RETURN_IF_ERROR(options.Validate());
+  BCOT_RETURN_IF_ERROR(CheckViewImage(camera, image));
+  std::vector<ContourPoint> contour(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    contour[i].pixel = points[i].pixel;
+    contour[i].normal = points[i].normal;
+    contour[i].point_in_object = points[i].point_in_object;
+  }
+  const auto always = [](int, int) { return true; };
+  return BuildLines(caster, camera, cam_from_rig, rig_from_objcentre, image, color_model, contour,
+                    options, [&](size_t i) {
+                      // The model's extents end at its own mask's flip; the same margin as the
+                      // rendered mask's walk (kMaskMarginPx) is kept from it.
+                      const ProjectedContourPoint& point = points[i];
+                      const auto side = [&](double extent_px, double sign) {
+                        const double limit =
+                            std::clamp(extent_px - kMaskMarginPx, 0.0, options.half_length_px);
+                        return Extent(camera, point.pixel, sign * point.normal, limit, always);
+                      };
+                      return LineSides{side(point.inside_px, -1.0), side(point.outside_px, 1.0)};
+                    });
 }
 
 }  // namespace bcot

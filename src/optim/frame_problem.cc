@@ -73,6 +73,11 @@ Status FrameProblemOptions::Validate() const {
   if (energy != RegionEnergy::kDense && lines.weight == 0.0) {
     violations.push_back("lines.weight = 0, must be > 0 when the sparse energy is used");
   }
+  if (lines_from_viewpoint_model && energy != RegionEnergy::kSparse) {
+    violations.push_back(
+        "lines_from_viewpoint_model = true, needs energy = sparse (the dense energy renders the "
+        "silhouette anyway)");
+  }
   const Status lines_status = lines.Validate();
   if (!lines_status.ok()) violations.push_back(lines_status.message());
   const Status edge_status = edge.Validate();
@@ -334,21 +339,30 @@ std::vector<Step> CoarseToFineSteps(const FrameProblemOptions& options) {
 // are linearised concurrently (Solve), and their terms added to the problem in view order
 // (AddViewTerms), so the result does not depend on the scheduling.
 std::optional<ViewTemplate> LineariseView(const RayCaster& caster,
+                                          const SparseViewpointModel* viewpoint_model,
                                           const FrameProblemOptions& options, const FrameView& view,
                                           int v, int level, const LevelOptions& level_options,
                                           const Eigen::Isometry3d& linearisation_pose,
                                           FrameViewSummary* view_summary) {
   if (view.weight == 0.0) return std::nullopt;
-  // The template reads the render's model points on its stride only.
-  const Silhouette silhouette = RenderSilhouette(
-      caster, *view.camera,
-      view.cam_from_rig * linearisation_pose * caster.mesh().objcentre_from_template(),
-      level_options.region.contour, level_options.region.stride_px);
+  const Eigen::Isometry3d cam_from_template =
+      view.cam_from_rig * linearisation_pose * caster.mesh().objcentre_from_template();
   const ColorModel& color_model = level == 0 && view.refine_color_model != nullptr
                                       ? *view.refine_color_model
                                       : *view.color_model;
   ViewTemplate t;
   t.view = v;
+  // The lines along the viewpoint model's points need no render (validated: energy sparse).
+  Silhouette silhouette;
+  std::vector<ProjectedContourPoint> model_points;
+  if (options.lines_from_viewpoint_model) {
+    model_points = viewpoint_model->Project(viewpoint_model->Nearest(cam_from_template),
+                                            *view.camera, cam_from_template);
+  } else {
+    // The template reads the render's model points on its stride only.
+    silhouette = RenderSilhouette(caster, *view.camera, cam_from_template,
+                                  level_options.region.contour, level_options.region.stride_px);
+  }
   if (options.energy != RegionEnergy::kSparse) {
     StatusOr<RegionTemplate> region_template =
         BuildRegionTemplate(caster, *view.camera, view.cam_from_rig, linearisation_pose,
@@ -368,8 +382,11 @@ std::optional<ViewTemplate> LineariseView(const RayCaster& caster,
   }
   if (options.energy != RegionEnergy::kDense) {
     StatusOr<CorrespondenceLines> lines =
-        BuildCorrespondenceLines(caster, *view.camera, view.cam_from_rig, linearisation_pose,
-                                 *view.image, color_model, silhouette, level_options.lines);
+        options.lines_from_viewpoint_model
+            ? BuildCorrespondenceLines(caster, *view.camera, view.cam_from_rig, linearisation_pose,
+                                       *view.image, color_model, model_points, level_options.lines)
+            : BuildCorrespondenceLines(caster, *view.camera, view.cam_from_rig, linearisation_pose,
+                                       *view.image, color_model, silhouette, level_options.lines);
     BCOT_CHECK(lines.ok());
     if (!lines->lines.empty()) {
       t.lines = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
@@ -386,13 +403,14 @@ std::optional<ViewTemplate> LineariseView(const RayCaster& caster,
 // LineariseView of every view, concurrently; `view_summaries` (one per view) receive what it
 // records at level 0.
 std::vector<std::optional<ViewTemplate>> LineariseViews(
-    const RayCaster& caster, const FrameProblemOptions& options,
-    const std::vector<FrameView>& views, int level, const LevelOptions& level_options,
-    const Eigen::Isometry3d& linearisation_pose, std::vector<FrameViewSummary>* view_summaries) {
+    const RayCaster& caster, const SparseViewpointModel* viewpoint_model,
+    const FrameProblemOptions& options, const std::vector<FrameView>& views, int level,
+    const LevelOptions& level_options, const Eigen::Isometry3d& linearisation_pose,
+    std::vector<FrameViewSummary>* view_summaries) {
   std::vector<std::optional<ViewTemplate>> linearised(views.size());
   tbb::parallel_for(size_t{0}, views.size(), [&](size_t v) {
-    linearised[v] = LineariseView(caster, options, views[v], static_cast<int>(v), level,
-                                  level_options, linearisation_pose, &(*view_summaries)[v]);
+    linearised[v] = LineariseView(caster, viewpoint_model, options, views[v], static_cast<int>(v),
+                                  level, level_options, linearisation_pose, &(*view_summaries)[v]);
   });
   return linearised;
 }
@@ -487,8 +505,10 @@ bool RecordRoundMotion(const FrameProblemOptions& options, const Eigen::Isometry
 }  // namespace
 
 FrameProblem::FrameProblem(const RayCaster& caster, const FrameProblemOptions& options,
-                           const std::optional<RotationalSymmetry>& symmetry)
-    : caster_(caster), options_(options) {
+                           const std::optional<RotationalSymmetry>& symmetry,
+                           const SparseViewpointModel* viewpoint_model)
+    : caster_(caster), viewpoint_model_(viewpoint_model), options_(options) {
+  BCOT_CHECK(viewpoint_model_ != nullptr || !options_.lines_from_viewpoint_model);
   if (symmetry.has_value()) {
     symmetry_in_objcentre_ = symmetry->Transformed(caster_.mesh().objcentre_from_template());
   }
@@ -528,8 +548,9 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
                                              : fmt::format("round {}", step.round + 1);
     const LevelOptions level_options = OptionsAtLevel(options_, step.level);
     Eigen::Isometry3d linearisation_pose = FromPoseParameters(x.data());
-    std::vector<std::optional<ViewTemplate>> linearised = LineariseViews(
-        caster_, options_, views, step.level, level_options, linearisation_pose, &summary.views);
+    std::vector<std::optional<ViewTemplate>> linearised =
+        LineariseViews(caster_, viewpoint_model_, options_, views, step.level, level_options,
+                       linearisation_pose, &summary.views);
     // Every coarse level has run before round 1 (a failed one ends the solve).
     if (step.round == 0 && options_.pyramid_levels > 1 && options_.coarse_check &&
         MaxCornerShiftPx(caster_.mesh(), views, start, linearisation_pose) >=
@@ -537,8 +558,9 @@ FrameSummary FrameProblem::Solve(const std::vector<FrameView>& views,
       // The coarse check (frame_problem.h): the rounds start where the level-0 energy is lower.
       summary.coarse_checked = true;
       std::vector<FrameViewSummary> start_summaries(views.size());
-      std::vector<std::optional<ViewTemplate>> at_start = LineariseViews(
-          caster_, options_, views, step.level, level_options, start, &start_summaries);
+      std::vector<std::optional<ViewTemplate>> at_start =
+          LineariseViews(caster_, viewpoint_model_, options_, views, step.level, level_options,
+                         start, &start_summaries);
       const PoseParameters start_x = ToPoseParameters(start);
       if (EnergyPerTerm(at_start, start_x.data()) < EnergyPerTerm(linearised, x.data())) {
         x = start_x;

@@ -42,7 +42,8 @@ Status MultiViewTrackerOptions::Validate() const {
 
 StatusOr<std::unique_ptr<MultiViewTracker>> MultiViewTracker::Create(
     const RayCaster& caster, std::vector<TrackedView> views, const MultiViewTrackerOptions& options,
-    const std::optional<RotationalSymmetry>& symmetry) {
+    const std::optional<RotationalSymmetry>& symmetry,
+    std::shared_ptr<const SparseViewpointModel> viewpoint_model) {
   BCOT_RETURN_IF_ERROR(options.Validate());
   if (views.empty()) return Status::InvalidConfig("tracker: no view to track in");
   for (const TrackedView& view : views) {
@@ -52,8 +53,14 @@ StatusOr<std::unique_ptr<MultiViewTracker>> MultiViewTracker::Create(
                                                view.camera.name, view.weight));
     }
   }
-  return std::unique_ptr<MultiViewTracker>(
-      new MultiViewTracker(caster, std::move(views), options, symmetry));
+  if (!options.frame.lines_from_viewpoint_model) {
+    viewpoint_model = nullptr;
+  } else if (viewpoint_model == nullptr) {
+    viewpoint_model = LoadOrBuildSparseViewpointModel(caster, SparseViewpointModelOptions(),
+                                                      options.viewpoint_cache_dir);
+  }
+  return std::unique_ptr<MultiViewTracker>(new MultiViewTracker(
+      caster, std::move(views), options, symmetry, std::move(viewpoint_model)));
 }
 
 namespace {
@@ -75,8 +82,13 @@ ImageResponse InitialImageResponse(const MultiViewTrackerOptions& options) {
 
 MultiViewTracker::MultiViewTracker(const RayCaster& caster, std::vector<TrackedView> views,
                                    const MultiViewTrackerOptions& options,
-                                   const std::optional<RotationalSymmetry>& symmetry)
-    : caster_(caster), views_(std::move(views)), options_(options), symmetry_(symmetry) {
+                                   const std::optional<RotationalSymmetry>& symmetry,
+                                   std::shared_ptr<const SparseViewpointModel> viewpoint_model)
+    : caster_(caster),
+      views_(std::move(views)),
+      options_(options),
+      symmetry_(symmetry),
+      viewpoint_model_(std::move(viewpoint_model)) {
   UseImageResponse(InitialImageResponse(options));
   color_models_.resize(views_.size());
   refine_color_models_.resize(views_.size());
@@ -87,9 +99,10 @@ void MultiViewTracker::UseImageResponse(const ImageResponse& response) {
   image_response_ = response;
   MultiViewTrackerOptions resolved = options_;
   resolved.frame.edge.lines.response = response;
-  problem_ = std::make_unique<FrameProblem>(caster_, resolved.frame, symmetry_);
-  bootstrap_problem_ =
-      std::make_unique<FrameProblem>(caster_, BootstrapFrameOptions(resolved), symmetry_);
+  problem_ =
+      std::make_unique<FrameProblem>(caster_, resolved.frame, symmetry_, viewpoint_model_.get());
+  bootstrap_problem_ = std::make_unique<FrameProblem>(caster_, BootstrapFrameOptions(resolved),
+                                                      symmetry_, viewpoint_model_.get());
 }
 
 void MultiViewTracker::ResetColorModels(size_t view) {

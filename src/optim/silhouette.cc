@@ -6,14 +6,19 @@
 
 namespace bcot {
 
-Status CheckSilhouetteInputs(const Camera& camera, const cv::Mat3b& image,
-                             const Silhouette& silhouette) {
+Status CheckViewImage(const Camera& camera, const cv::Mat3b& image) {
   BCOT_RETURN_IF_ERROR(camera.Validate());
   if (image.cols != camera.width || image.rows != camera.height) {
     return Status::InvalidInput(fmt::format("camera '{}': image is {}x{}, camera expects {}x{}",
                                             camera.name, image.cols, image.rows, camera.width,
                                             camera.height));
   }
+  return Status::Ok();
+}
+
+Status CheckSilhouetteInputs(const Camera& camera, const cv::Mat3b& image,
+                             const Silhouette& silhouette) {
+  BCOT_RETURN_IF_ERROR(CheckViewImage(camera, image));
   if (silhouette.mask.size() != image.size()) {
     return Status::InvalidInput(fmt::format("camera '{}': silhouette mask is {}x{}, image {}x{}",
                                             camera.name, silhouette.mask.cols, silhouette.mask.rows,

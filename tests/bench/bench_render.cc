@@ -10,11 +10,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
+#include "bcot/render/sparse_viewpoint_model.h"
 #include "test_meshes.h"
 
 namespace bcot {
@@ -106,6 +109,49 @@ void BM_ExtractContour(benchmark::State& state, const std::string& mesh_name, in
   state.counters["triangles"] = static_cast<double>(scene.mesh.triangles().size());
 }
 
+// The default-options viewpoint model of `mesh_name`'s scene mesh, built once per mesh.
+const SparseViewpointModel& ViewpointModelFor(const std::string& mesh_name,
+                                              const RayCaster& caster) {
+  static std::map<std::string, std::unique_ptr<SparseViewpointModel>> models;
+  std::unique_ptr<SparseViewpointModel>& model = models[mesh_name];
+  if (model == nullptr) {
+    model = std::make_unique<SparseViewpointModel>(SparseViewpointModel::Build(caster, {}));
+  }
+  return *model;
+}
+
+// The sparse viewpoint model's replacement of ExtractContour in the region rounds: the nearest
+// viewpoint and its points projected (sparse_viewpoint_model.h).
+void BM_ViewpointContour(benchmark::State& state, const std::string& mesh_name, int image_height) {
+  const Scene scene = SceneFor(mesh_name, image_height);
+  const RayCaster caster(scene.mesh);
+  const SparseViewpointModel& model = ViewpointModelFor(mesh_name, caster);
+  double points = 0.0;
+  for (auto _ : state) {
+    const std::vector<ProjectedContourPoint> contour =
+        model.Project(model.Nearest(scene.cam_from_object), scene.camera, scene.cam_from_object);
+    benchmark::DoNotOptimize(contour.data());
+    points = static_cast<double>(contour.size());
+  }
+  state.counters["points"] = points;
+  state.counters["tbb_threads"] = 1;
+}
+
+// Building the default model (2,562 viewpoints), once.
+void BM_BuildViewpointModel(benchmark::State& state, const std::string& mesh_name, int threads) {
+  const Scene scene = SceneFor(mesh_name, 512);
+  const RayCaster caster(scene.mesh);
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, threads);
+  double points = 0.0;
+  for (auto _ : state) {
+    const SparseViewpointModel model = SparseViewpointModel::Build(caster, {});
+    points = 0.0;
+    for (int i = 0; i < model.size(); ++i) points += model.viewpoint(i).points.size();
+  }
+  state.counters["points"] = points;
+  state.counters["tbb_threads"] = threads;
+}
+
 void RegisterAll() {
   for (const std::string mesh : {"torus10k", "spool"}) {
     for (const int height : {512, 1024}) {
@@ -128,6 +174,17 @@ void RegisterAll() {
             ->UseRealTime()
             ->Unit(benchmark::kMillisecond);
       }
+      benchmark::RegisterBenchmark(("ViewpointContour/" + mesh + "/" + size + "/threads:1").c_str(),
+                                   BM_ViewpointContour, mesh, height)
+          ->Unit(benchmark::kMillisecond);
+    }
+    for (const int threads : {1, 2}) {
+      benchmark::RegisterBenchmark(
+          ("BuildViewpointModel/" + mesh + "/threads:" + std::to_string(threads)).c_str(),
+          BM_BuildViewpointModel, mesh, threads)
+          ->UseRealTime()
+          ->Iterations(1)
+          ->Unit(benchmark::kMillisecond);
     }
   }
 }

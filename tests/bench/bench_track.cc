@@ -27,6 +27,7 @@
 #include "bcot/optim/multi_view_tracker.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
+#include "bcot/render/sparse_viewpoint_model.h"
 #include "bcot/synth/synth_options.h"
 #include "bcot/synth/synthesizer.h"
 
@@ -90,17 +91,29 @@ const Fixture& TheFixture() {
   return fixture;
 }
 
-void BM_Track(benchmark::State& state, const std::string& config) {
+// The fixture mesh's sparse viewpoint model (default options), built on first use.
+std::shared_ptr<const SparseViewpointModel> TheViewpointModel() {
+  static const std::shared_ptr<const SparseViewpointModel> model =
+      std::make_shared<const SparseViewpointModel>(
+          SparseViewpointModel::Build(*TheFixture().caster, SparseViewpointModelOptions()));
+  return model;
+}
+
+// `overrides`: --set style settings on top of the config (the region energy variants).
+void BM_Track(benchmark::State& state, const std::string& config,
+              const std::vector<std::string>& overrides) {
   const Fixture& fixture = TheFixture();
   const AnnotateOptions options =
-      OrDie(ReadAnnotateOptions(std::string(BCOT_SOURCE_DIR) + "/configs/" + config, {}));
+      OrDie(ReadAnnotateOptions(std::string(BCOT_SOURCE_DIR) + "/configs/" + config, overrides));
+  const std::shared_ptr<const SparseViewpointModel> viewpoint_model =
+      options.tracker.frame.lines_from_viewpoint_model ? TheViewpointModel() : nullptr;
   const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, 1);
   std::vector<TrackedView> views;
   for (int c = 0; c < 2; ++c) {
     views.push_back({fixture.sequence.rig[c].camera, fixture.sequence.rig[c].cam_from_rig, 1.0});
   }
-  std::unique_ptr<MultiViewTracker> tracker =
-      OrDie(MultiViewTracker::Create(*fixture.caster, views, options.tracker));
+  std::unique_ptr<MultiViewTracker> tracker = OrDie(MultiViewTracker::Create(
+      *fixture.caster, views, options.tracker, std::nullopt, viewpoint_model));
   Eigen::Isometry3d rig_from_objcentre;
   int frame = kNumFrames;  // reset on the first iteration
   for (auto _ : state) {
@@ -125,11 +138,20 @@ void BM_Track(benchmark::State& state, const std::string& config) {
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  // The configs as they are, then with the sparse region energy, rendered or from the sparse
+  // viewpoint model (sparse_viewpoint_model.h).
+  const std::vector<std::pair<std::string, std::vector<std::string>>> variants = {
+      {"", {}},
+      {"/sparse", {"cost.energy=sparse"}},
+      {"/sparse_viewpoints", {"cost.energy=sparse", "lines.viewpoint_model=true"}}};
   for (const std::string config : {"track.yaml", "annotate.yaml"}) {
-    benchmark::RegisterBenchmark(("Track/2views/640x480/" + config + "/threads:1").c_str(),
-                                 bcot::BM_Track, config)
-        ->Unit(benchmark::kMillisecond)
-        ->MinTime(2.0);
+    for (const auto& [suffix, overrides] : variants) {
+      benchmark::RegisterBenchmark(
+          ("Track/2views/640x480/" + config + suffix + "/threads:1").c_str(), bcot::BM_Track,
+          config, overrides)
+          ->Unit(benchmark::kMillisecond)
+          ->MinTime(2.0);
+    }
   }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

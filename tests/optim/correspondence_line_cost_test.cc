@@ -16,6 +16,7 @@
 #include "bcot/optim/correspondence_lines.h"
 #include "bcot/optim/multi_view_tracker.h"
 #include "bcot/optim/se3_manifold.h"
+#include "bcot/render/sparse_viewpoint_model.h"
 #include "region_test_scene.h"
 #include "test_util.h"
 
@@ -163,6 +164,58 @@ TEST_F(CorrespondenceLineTest, LinesAtTheTruthMeasureNoOffset) {
   EXPECT_LT(offsets[offsets.size() / 2], 0.2);
 }
 
+// Seen exactly from one of a sparse viewpoint model's viewpoints, at the model's distance, the
+// lines along the model's points measure the boundary where the model puts it, like the lines
+// along the rendered contour, and as many of them are kept.
+TEST_F(CorrespondenceLineTest, LinesAlongAViewpointModelAtTheTruthMeasureNoOffset) {
+  SparseViewpointModelOptions model_options;
+  model_options.sphere_subdivisions = 2;
+  model_options.image_size_px = 300;
+  const SparseViewpointModel model = SparseViewpointModel::Build(*caster_, model_options);
+  const Camera camera("test", 640, 480, 900.0, 900.0, 319.5, 239.5);
+  const double distance =
+      model_options.distance_factor * 0.5 * (mesh_->bbox_max() - mesh_->bbox_min()).norm();
+  for (int index : {3, 50, 120}) {
+    const Eigen::Isometry3d cam_from_template =
+        LookAtCamFromObject(model.centre(), model.viewpoint(index).direction, distance);
+    ASSERT_EQ(model.Nearest(cam_from_template), index);
+    const Eigen::Isometry3d cam_from_objcentre =
+        cam_from_template * mesh_->objcentre_from_template().inverse();
+    const Eigen::Isometry3d rig_from_objcentre = test::RigFromObjcentre(cam_from_objcentre);
+    const cv::Mat3b image = test::RenderTestImage(*caster_, camera, cam_from_objcentre);
+    const Silhouette silhouette =
+        RenderSilhouette(*caster_, camera, cam_from_template, RegionTemplateOptions().contour);
+    GlobalColorModel color_model{ColorModelOptions()};
+    color_model.Update(image, silhouette);
+    const StatusOr<CorrespondenceLines> rendered =
+        BuildCorrespondenceLines(*caster_, camera, test::TestCamFromRig(), rig_from_objcentre,
+                                 image, color_model, silhouette);
+    const StatusOr<CorrespondenceLines> from_model = BuildCorrespondenceLines(
+        *caster_, camera, test::TestCamFromRig(), rig_from_objcentre, image, color_model,
+        model.Project(index, camera, cam_from_template));
+    ASSERT_TRUE(rendered.ok() && from_model.ok());
+    std::vector<double> offsets;
+    for (const CorrespondenceLine& line : from_model->lines) {
+      offsets.push_back(std::abs(line.mean_px));
+      // The model's anchor is its point's own projection.
+      EXPECT_LT((line.projection0 - line.centre).norm(), 1e-9);
+    }
+    ASSERT_GT(offsets.size(), 0.9 * rendered->lines.size()) << "viewpoint " << index;
+    std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
+    EXPECT_LT(offsets[offsets.size() / 2], 0.2) << "viewpoint " << index;
+  }
+}
+
+TEST(FrameProblemOptionsTest, ViewpointModelNeedsTheSparseEnergy) {
+  FrameProblemOptions options;
+  options.lines_from_viewpoint_model = true;
+  options.energy = RegionEnergy::kSparse;
+  EXPECT_TRUE(options.Validate().ok());
+  options.energy = RegionEnergy::kCombined;
+  test::ExpectErrorNaming(options.Validate(), StatusCode::kInvalidConfig,
+                          {"lines_from_viewpoint_model = true", "energy = sparse"});
+}
+
 // ceres::GradientChecker through the Se3Manifold at the four poses of STYLE.md.
 TEST_F(CorrespondenceLineTest, GradientCheckerAcceptsTheAnalyticJacobian) {
   Se3Manifold manifold;
@@ -274,6 +327,40 @@ TEST_P(SparseEnergyConvergenceTest, RecoversAPerturbedFrame) {
                                        binocular ? 0.2 : 1.0))
           << (binocular ? "binocular" : "monocular") << " seed " << seed;
     }
+  }
+}
+
+// The same acceptance test, binocular, with the region rounds' lines along a sparse viewpoint
+// model (a coarse one, 642 viewpoints about 8° apart, for the test's time; the edge stage
+// renders the exact contour).
+TEST_F(SparseEnergyConvergenceTest, RecoversAPerturbedFrameFromAViewpointModel) {
+  const test::BinocularScene scene;
+  const std::vector<cv::Mat3b> images =
+      test::RenderViews(*caster_, scene, scene.rig_from_objcentre, 11);
+  SparseViewpointModelOptions model_options;
+  model_options.sphere_subdivisions = 3;
+  model_options.image_size_px = 300;
+  const auto model = std::make_shared<const SparseViewpointModel>(
+      SparseViewpointModel::Build(*caster_, model_options));
+  MultiViewTrackerOptions options;
+  options.frame.energy = RegionEnergy::kSparse;
+  options.frame.lines_from_viewpoint_model = true;
+  for (unsigned seed : {1u, 2u, 3u}) {
+    StatusOr<std::unique_ptr<MultiViewTracker>> tracker = MultiViewTracker::Create(
+        *caster_,
+        {{scene.camera0, scene.cam0_from_rig, 1.0}, {scene.camera1, scene.cam1_from_rig, 1.0}},
+        options, std::nullopt, model);
+    ASSERT_TRUE(tracker.ok()) << tracker.status().message();
+    Eigen::Isometry3d pose = test::Perturb(scene.rig_from_objcentre, seed);
+    const StatusOr<FrameSummary> summary = (*tracker)->Initialize(images, &pose);
+    ASSERT_TRUE(summary.ok()) << summary.status().message();
+    std::printf("viewpoint model seed %u: %s, lines %d, error %.4f deg %.4f mm\n", seed,
+                FrameTerminationName(summary->termination), summary->views[0].lines,
+                test::RotationErrorDeg(pose, scene.rig_from_objcentre),
+                test::TranslationErrorMm(pose, scene.rig_from_objcentre));
+    EXPECT_TRUE(summary->usable()) << summary->message;
+    EXPECT_GT(summary->views[0].lines, 100);
+    EXPECT_THAT(pose, test::PoseNear(scene.rig_from_objcentre, 0.1, 0.2)) << "seed " << seed;
   }
 }
 

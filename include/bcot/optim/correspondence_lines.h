@@ -48,6 +48,7 @@
 #include "bcot/optim/color_model.h"
 #include "bcot/optim/silhouette.h"
 #include "bcot/render/ray_caster.h"
+#include "bcot/render/sparse_viewpoint_model.h"
 
 namespace bcot {
 
@@ -116,8 +117,9 @@ class LineAnchors {
               const Eigen::Isometry3d& rig_from_objcentre, const std::vector<ContourPoint>& contour,
               int num_lines);
   int size() const { return size_; }
-  // The contour sample of candidate j, 0 <= j < size().
+  // The contour sample of candidate j, 0 <= j < size(), and its index in the contour.
   const ContourPoint& point(int j) const;
+  size_t index(int j) const;
   // The line of candidate j anchored at T0; false when its model point is not in front of the
   // camera.
   bool Anchor(int j, CorrespondenceLine* line) const;
@@ -138,6 +140,16 @@ StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
     const RayCaster& caster, const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
     const Eigen::Isometry3d& rig_from_objcentre, const cv::Mat3b& image,
     const ColorModel& color_model, const Silhouette& silhouette,
+    const CorrespondenceLineOptions& options = {});
+
+// The same lines along the points of a sparse viewpoint model (sparse_viewpoint_model.h)
+// projected at cam_from_rig · T0 · objcentre_from_template, without a render: a line extends as
+// far as the model's extents of its point (less the margin the rendered mask's walk keeps) and
+// the image allow. Errors: invalid options, image size different from the camera's.
+StatusOr<CorrespondenceLines> BuildCorrespondenceLines(
+    const RayCaster& caster, const Camera& camera, const Eigen::Isometry3d& cam_from_rig,
+    const Eigen::Isometry3d& rig_from_objcentre, const cv::Mat3b& image,
+    const ColorModel& color_model, const std::vector<ProjectedContourPoint>& points,
     const CorrespondenceLineOptions& options = {});
 
 // The contour-position distribution of one line from its samples (exposed for tests):

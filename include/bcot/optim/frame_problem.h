@@ -33,6 +33,11 @@
 // levels moved no corner of the mesh's bounding box by coarse_check_min_shift_px in any view:
 // the level-0 rounds, whose band is several times wider, start from either pose alike.
 //
+// Sparse viewpoint model. With options.lines_from_viewpoint_model (energy sparse only) the
+// region rounds do not ray-cast: each view's lines lie along the points of the model's nearest
+// viewpoint (SparseViewpointModel, built once per mesh), projected at the current pose. The edge
+// stage still renders the exact silhouette (docs/sparse_viewpoint_model.md).
+//
 // Monocular tracking is the same code with one view. Failure is data: the Summary says what
 // happened; the pose is only written when the solve produced a finite energy.
 //
@@ -60,6 +65,7 @@
 #include "bcot/optim/region_cost.h"
 #include "bcot/optim/region_template.h"
 #include "bcot/render/ray_caster.h"
+#include "bcot/render/sparse_viewpoint_model.h"
 
 namespace bcot {
 
@@ -146,6 +152,11 @@ struct FrameProblemOptions {
   // Correspondence lines of the sparse energy at level 0; coarse levels multiply its lengths
   // by 2^l like the dense band.
   CorrespondenceLineOptions lines;
+  // The lines of the region rounds along a sparse viewpoint model's points instead of a
+  // silhouette rendered at each linearisation (see "Sparse viewpoint model" above); needs
+  // energy = sparse (the dense template renders the silhouette anyway). YAML:
+  // lines.viewpoint_model.
+  bool lines_from_viewpoint_model = false;
   // The final edge-alignment stage (after the rounds at level 0).
   EdgeRefineOptions edge;
   // Threads Ceres may use to evaluate residuals; >= 1.
@@ -233,8 +244,11 @@ class FrameProblem {
   // response (CHECKed: MultiViewTracker resolves ImageResponse::Kind::kAuto).
   // `symmetry`: the mesh's rotational symmetry in O_t (render/symmetry_detection.h), if any;
   // every solve then keeps the angle about its axis where it started (AxisLockedSe3Manifold).
+  // `viewpoint_model`: the sparse viewpoint model of the caster's mesh, required (CHECKed) with
+  // options.lines_from_viewpoint_model, unused otherwise; must outlive the problem.
   FrameProblem(const RayCaster& caster, const FrameProblemOptions& options,
-               const std::optional<RotationalSymmetry>& symmetry = std::nullopt);
+               const std::optional<RotationalSymmetry>& symmetry = std::nullopt,
+               const SparseViewpointModel* viewpoint_model = nullptr);
 
   // Minimises the joint energy starting from *rig_from_objcentre and writes the result there
   // (unless !summary.usable()). Views with weight 0 or the object out of view contribute no
@@ -255,6 +269,8 @@ class FrameProblem {
 
   const RayCaster& caster() const { return caster_; }
   const FrameProblemOptions& options() const { return options_; }
+  // The model given to the constructor (null when none was given).
+  const SparseViewpointModel* viewpoint_model() const { return viewpoint_model_; }
   // The symmetry given to the constructor, in O_o.
   const std::optional<RotationalSymmetry>& symmetry_in_objcentre() const {
     return symmetry_in_objcentre_;
@@ -269,6 +285,7 @@ class FrameProblem {
                    std::shared_ptr<const PoseGaussian>* posterior) const;
 
   const RayCaster& caster_;
+  const SparseViewpointModel* viewpoint_model_;  // with options_.lines_from_viewpoint_model
   // The mesh's creases, found once when the edge stage measures them (edge.lines.crease_contours).
   std::vector<Crease> creases_;
   FrameProblemOptions options_;

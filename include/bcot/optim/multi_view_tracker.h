@@ -36,6 +36,7 @@
 #include <memory>
 #include <opencv2/core.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "bcot/core/camera.h"
@@ -71,6 +72,11 @@ struct MultiViewTrackerOptions {
   // frame.rounds 2 (a monocular pinion of the Cycles scenes is lost from frame 0 with 2 bootstrap
   // rounds, docs/notes/issue19_speed.md).
   int bootstrap_rounds = 0;
+  // Directory of the sparse viewpoint models cached on disk for frame.lines_from_viewpoint_model
+  // (LoadOrBuildSparseViewpointModel); empty = built for every tracker. Where models are kept,
+  // not how frames are solved: not an option of the YAML config (the bcot tools set it,
+  // docs/sparse_viewpoint_model.md).
+  std::string viewpoint_cache_dir;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
@@ -87,12 +93,15 @@ class MultiViewTracker {
  public:
   // `caster` must outlive the tracker. `symmetry`: the mesh's rotational symmetry in O_t
   // (render/symmetry_detection.h), if any; no solve then turns the object about its axis
-  // (FrameProblem). Errors: invalid options or cameras, no view, a negative or non-finite
-  // weight (kInvalidConfig).
+  // (FrameProblem). `viewpoint_model`: the caster's mesh's sparse viewpoint model for
+  // frame.lines_from_viewpoint_model; when that option is on and none is given, the tracker
+  // reads or builds one (options.viewpoint_cache_dir). Errors: invalid options or
+  // cameras, no view, a negative or non-finite weight (kInvalidConfig).
   static StatusOr<std::unique_ptr<MultiViewTracker>> Create(
       const RayCaster& caster, std::vector<TrackedView> views,
       const MultiViewTrackerOptions& options,
-      const std::optional<RotationalSymmetry>& symmetry = std::nullopt);
+      const std::optional<RotationalSymmetry>& symmetry = std::nullopt,
+      std::shared_ptr<const SparseViewpointModel> viewpoint_model = nullptr);
 
   // See the header comment. Images must match the views' camera sizes (else kInvalidInput).
   Status Reset(const std::vector<cv::Mat3b>& images, const Eigen::Isometry3d& rig_from_objcentre);
@@ -118,7 +127,8 @@ class MultiViewTracker {
  private:
   MultiViewTracker(const RayCaster& caster, std::vector<TrackedView> views,
                    const MultiViewTrackerOptions& options,
-                   const std::optional<RotationalSymmetry>& symmetry);
+                   const std::optional<RotationalSymmetry>& symmetry,
+                   std::shared_ptr<const SparseViewpointModel> viewpoint_model);
   Status CheckImages(const std::vector<cv::Mat3b>& images) const;
   // Replaces view `view`'s colour models by fresh (unlearned) ones.
   void ResetColorModels(size_t view);
@@ -151,6 +161,8 @@ class MultiViewTracker {
   std::vector<TrackedView> views_;
   MultiViewTrackerOptions options_;
   std::optional<RotationalSymmetry> symmetry_;  // O_t
+  // With options_.frame.lines_from_viewpoint_model, else null.
+  std::shared_ptr<const SparseViewpointModel> viewpoint_model_;
   ImageResponse image_response_;
   std::optional<StatusOr<ResponseEstimate>> response_estimate_;
   // The frame problems of options_ with image_response_ (resolved) as the edge response.

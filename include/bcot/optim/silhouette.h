@@ -55,6 +55,9 @@ Silhouette RenderSilhouetteContour(const RayCaster& caster, const Camera& camera
 Silhouette RenderSilhouetteMask(const RayCaster& caster, const Camera& camera,
                                 const Eigen::Isometry3d& cam_from_template);
 
+// Checks a view's image: a valid camera and an image of its size (kInvalidConfig /
+// kInvalidInput naming the camera).
+Status CheckViewImage(const Camera& camera, const cv::Mat3b& image);
 // Checks what the templates built on a silhouette need: a valid camera, an image of the
 // camera's size and a mask of the image's size (kInvalidConfig / kInvalidInput naming the
 // camera).
