@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses (tests/fuzz/: rig.yaml, object.yaml, pose files, K.txt, the
-# annotate config, OBJ meshes) with clang, AddressSanitizer and UBSan into build-fuzz/, and runs
-# each for SECONDS (default 20) on a copy of its seed corpus (tests/fuzz/corpus/<target>/).
+# annotate config, OBJ meshes, cached viewpoint models) with clang, AddressSanitizer and UBSan
+# into build-fuzz/, and runs each for SECONDS (default 20) on a copy of its seed corpus
+# (tests/fuzz/corpus/<target>/).
 #   scripts/fuzz.sh [SECONDS] [ctest args instead of the default -L '^fuzz$', e.g. -R mesh]
 # Prints the executions per target; a crash fails and leaves its input in
 # build-fuzz/tests/fuzz/runs/<target>/crash-*, which then belongs in the corpus and a

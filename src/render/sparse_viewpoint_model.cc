@@ -304,7 +304,7 @@ StatusOr<SparseViewpointModel> SparseViewpointModel::Deserialize(const std::stri
     }
     viewpoint.points.resize(points);
     for (ViewpointContourPoint& p : viewpoint.points) {
-      std::array<float, kFloatsPerPoint> values;
+      std::array<float, kFloatsPerPoint> values{};
       for (float& value : values) reader.Get(&value);
       p.point = Eigen::Vector3f(values[0], values[1], values[2]);
       p.normal = Eigen::Vector3f(values[3], values[4], values[5]);
