@@ -24,7 +24,7 @@ namespace {
 // key, the centre (3 doubles), uint32 viewpoint count; per viewpoint its direction (3 doubles),
 // uint32 point count and per point 8 floats (point, normal, inside, outside).
 constexpr char kMagic[8] = {'B', 'C', 'O', 'T', 'S', 'V', 'M', '\n'};
-constexpr uint32_t kFormatVersion = 1;
+constexpr uint32_t kFormatVersion = 2;
 constexpr uint32_t kByteOrderMark = 0x01020304;
 constexpr size_t kKeyLength = 16;
 constexpr int kFloatsPerPoint = 8;
@@ -38,20 +38,23 @@ constexpr double kContourPrecisionPx = 1.0 / 64.0;
 // may be the rounding of the point's own contour.
 constexpr double kExtentStepPx = 0.25;
 constexpr double kExtentStartPx = 1.0;
+constexpr double kUnboundedExtent = std::numeric_limits<double>::infinity();
 
 // Distance (px) from `start` along `direction` to where `mask` (the render of `roi`) stops
-// being `inside`, capped at `cap_px`. Pixels outside the roi are outside the object.
+// being `inside`; kUnboundedExtent when the walk leaves the roi outside the object (the object
+// lies within the roi, so nothing beyond it can flip back).
 double MaskExtentPx(const cv::Mat1b& mask, const cv::Rect& roi, const Eigen::Vector2d& start,
-                    const Eigen::Vector2d& direction, bool inside, double cap_px) {
-  for (double t = kExtentStartPx; t < cap_px; t += kExtentStepPx) {
+                    const Eigen::Vector2d& direction, bool inside) {
+  for (double t = kExtentStartPx;; t += kExtentStepPx) {
     const Eigen::Vector2d p = start + t * direction;
     const int x = static_cast<int>(std::lround(p.x())) - roi.x;
     const int y = static_cast<int>(std::lround(p.y())) - roi.y;
-    const bool hit = x >= 0 && y >= 0 && x < mask.cols && y < mask.rows && mask(y, x) != 0;
+    const bool in_roi = x >= 0 && y >= 0 && x < mask.cols && y < mask.rows;
+    if (!in_roi && !inside) return kUnboundedExtent;
+    const bool hit = in_roi && mask(y, x) != 0;
     // The flip lies between this sample and the previous one.
     if (hit != inside) return t - 0.5 * kExtentStepPx;
   }
-  return cap_px;
 }
 
 Viewpoint BuildViewpoint(const RayCaster& caster, const SparseViewpointModelOptions& options,
@@ -80,20 +83,18 @@ Viewpoint BuildViewpoint(const RayCaster& caster, const SparseViewpointModelOpti
   if (contour.empty()) return viewpoint;
   const int count = std::min<int>(options.points_per_viewpoint, static_cast<int>(contour.size()));
   const Eigen::Matrix3d template_from_cam = cam_from_template.linear().transpose();
-  const double cap_mm = options.max_extent_fraction * radius;
   viewpoint.points.reserve(count);
   for (int j = 0; j < count; ++j) {
     const ContourPoint& c = contour[static_cast<size_t>((j + 0.5) * contour.size() / count)];
     const double depth = (cam_from_template * c.point_in_object).z();
     const double mm_per_px = depth / focal;
-    const double cap_px = cap_mm / mm_per_px;
     ViewpointContourPoint p;
     p.point = c.point_in_object.cast<float>();
     p.normal = (template_from_cam * Eigen::Vector3d(c.normal.x(), c.normal.y(), 0.0)).cast<float>();
     p.inside_mm = static_cast<float>(
-        mm_per_px * MaskExtentPx(view.mask, view.roi, c.pixel, -c.normal, true, cap_px));
+        mm_per_px * MaskExtentPx(view.mask, view.roi, c.pixel, -c.normal, /*inside=*/true));
     p.outside_mm = static_cast<float>(
-        mm_per_px * MaskExtentPx(view.mask, view.roi, c.pixel, c.normal, false, cap_px));
+        mm_per_px * MaskExtentPx(view.mask, view.roi, c.pixel, c.normal, /*inside=*/false));
     viewpoint.points.push_back(p);
   }
   return viewpoint;
@@ -148,10 +149,6 @@ Status SparseViewpointModelOptions::Validate() const {
   }
   if (image_size_px < 64 || image_size_px > 4096) {
     violations.push_back(fmt::format("image_size_px = {}, must be in [64, 4096]", image_size_px));
-  }
-  if (!(max_extent_fraction > 0.0) || !std::isfinite(max_extent_fraction)) {
-    violations.push_back(
-        fmt::format("max_extent_fraction = {}, must be finite and > 0", max_extent_fraction));
   }
   return internal::JoinViolations("sparse viewpoint model", violations);
 }
@@ -233,9 +230,9 @@ std::string SparseViewpointModel::CacheKey(const Mesh& mesh,
                             mesh.vertices().size() * sizeof(Eigen::Vector3f)));
   hash.Add(std::string_view(reinterpret_cast<const char*>(mesh.triangles().data()),
                             mesh.triangles().size() * sizeof(Eigen::Vector3i)));
-  hash.Add(fmt::format("{} {} {:.17g} {} {:.17g}", options.sphere_subdivisions,
-                       options.points_per_viewpoint, options.distance_factor, options.image_size_px,
-                       options.max_extent_fraction));
+  hash.Add(fmt::format("{} {} {:.17g} {}", options.sphere_subdivisions,
+                       options.points_per_viewpoint, options.distance_factor,
+                       options.image_size_px));
   return hash.Hex();
 }
 
@@ -310,11 +307,12 @@ StatusOr<SparseViewpointModel> SparseViewpointModel::Deserialize(const std::stri
       p.normal = Eigen::Vector3f(values[3], values[4], values[5]);
       p.inside_mm = values[6];
       p.outside_mm = values[7];
-      const bool finite = std::all_of(values.begin(), values.end(),
+      // Point, normal and inside extent finite; the outside extent may be unbounded.
+      const bool finite = std::all_of(values.begin(), values.begin() + 7,
                                       [](float value) { return std::isfinite(value); });
-      if (!finite || p.inside_mm < 0.0f || p.outside_mm < 0.0f) {
-        return invalid(
-            fmt::format("viewpoint {}: a point is not finite or has a negative extent", i));
+      if (!finite || p.inside_mm < 0.0f || !(p.outside_mm >= 0.0f)) {
+        return invalid(fmt::format(
+            "viewpoint {}: a point is not finite or has a negative or undefined extent", i));
       }
     }
   }

@@ -14,14 +14,17 @@
 // evenly spaced along all contours, are kept with
 //   point      the contour's model point X (O_t, mm);
 //   normal     the contour's outward 2D normal n as a 3D direction in O_t: R_tc·(n_x, n_y, 0),
-//              orthogonal to the viewing ray's plane at X;
+//              orthogonal to the virtual camera's optical axis;
 //   inside, outside  the distance (mm at X's depth) along −n and +n over which the virtual mask
-//              keeps its value, capped at max_extent_fraction·r: a line through the point
-//              that must not cross a second contour stops there.
+//              keeps its value: a line through the point that must not cross a second contour
+//              stops there. Outside is +∞ where nothing of the object lies beyond the point (a
+//              cap would shorten the coarse levels' lines around small objects, whose length in
+//              mm is not known here: with a cap of half the bounding-sphere radius the real
+//              BCOT Cat was lost from the coarse levels, docs/sparse_viewpoint_model.md).
 // The viewpoints are the vertices of an icosahedron whose faces are split in four
 // `sphere_subdivisions` times (10·4^k + 2 of them; k = 5: 10,242, about 2° apart; M3T uses
-// k = 4, which moved the tracking setting's rotation error by up to 60 % on the Cycles scenes,
-// docs/sparse_viewpoint_model.md).
+// k = 4, which was up to 60 % worse at the tracking setting on the Cycles scenes in a first
+// measurement, docs/sparse_viewpoint_model.md).
 //
 // Use. For a camera at cam_from_template, Nearest() is the viewpoint closest in direction to
 // the camera's centre as seen from c; Project() maps its points into the camera: pixel x(X),
@@ -65,8 +68,6 @@ struct SparseViewpointModelOptions {
   double distance_factor = 8.0;
   // Side of the virtual cameras' square images (px); in [64, 4096].
   int image_size_px = 400;
-  // Cap of the inside and outside extents, in units of r; > 0.
-  double max_extent_fraction = 0.5;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
@@ -75,7 +76,7 @@ struct ViewpointContourPoint {
   Eigen::Vector3f point = Eigen::Vector3f::Zero();   // X in O_t, mm
   Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // outward contour normal, unit, O_t
   float inside_mm = 0.0f;                            // extent along −normal
-  float outside_mm = 0.0f;                           // extent along +normal
+  float outside_mm = 0.0f;                           // extent along +normal; may be +∞
 };
 
 struct Viewpoint {
@@ -89,7 +90,7 @@ struct ProjectedContourPoint {
   Eigen::Vector2d normal = Eigen::Vector2d::UnitX();          // unit, outward
   Eigen::Vector3d point_in_object = Eigen::Vector3d::Zero();  // X in O_t, mm
   double inside_px = 0.0;
-  double outside_px = 0.0;
+  double outside_px = 0.0;  // may be +∞
 };
 
 // cam_from_object of a camera at `target` + distance·direction (unit `direction`, object frame)
