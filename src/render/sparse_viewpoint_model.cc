@@ -40,12 +40,15 @@ constexpr double kExtentStepPx = 0.25;
 constexpr double kExtentStartPx = 1.0;
 constexpr double kUnboundedExtent = std::numeric_limits<double>::infinity();
 
-// Distance (px) from `start` along `direction` to where `mask` (the render of `roi`) stops
-// being `inside`; kUnboundedExtent when the walk leaves the roi outside the object (the object
-// lies within the roi, so nothing beyond it can flip back).
+// Distance (px) from `start` (in the roi) along the unit `direction` to where `mask` (the
+// render of `roi`) stops being `inside`; kUnboundedExtent when the walk leaves the roi outside
+// the object (the object lies within the roi, so nothing beyond it can flip back).
 double MaskExtentPx(const cv::Mat1b& mask, const cv::Rect& roi, const Eigen::Vector2d& start,
                     const Eigen::Vector2d& direction, bool inside) {
-  for (double t = kExtentStartPx;; t += kExtentStepPx) {
+  // A unit step leaves the roi within its width plus height; the bound also ends the walk of a
+  // degenerate (zero) direction.
+  const double longest = roi.width + roi.height + kExtentStartPx;
+  for (double t = kExtentStartPx; t <= longest; t += kExtentStepPx) {
     const Eigen::Vector2d p = start + t * direction;
     const int x = static_cast<int>(std::lround(p.x())) - roi.x;
     const int y = static_cast<int>(std::lround(p.y())) - roi.y;
@@ -55,6 +58,7 @@ double MaskExtentPx(const cv::Mat1b& mask, const cv::Rect& roi, const Eigen::Vec
     // The flip lies between this sample and the previous one.
     if (hit != inside) return t - 0.5 * kExtentStepPx;
   }
+  return inside ? longest : kUnboundedExtent;
 }
 
 Viewpoint BuildViewpoint(const RayCaster& caster, const SparseViewpointModelOptions& options,
