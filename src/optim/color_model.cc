@@ -246,6 +246,7 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
   BCOT_CHECK(image.size() == silhouette.mask.size());
   if (cv::countNonZero(silhouette.mask) == 0) {
     active_.clear();
+    BuildCoverGrid();
     return;
   }
   std::vector<bool> is_active(regions_.size(), false);
@@ -313,11 +314,70 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
     is_active[region] = true;
     active_.push_back({point.pixel, region});
   }
+  BuildCoverGrid();
+}
+
+void LocalColorModel::BuildCoverGrid() {
+  cover_ = CoverGrid{};
+  if (active_.empty()) return;
+  constexpr int kCell = CoverGrid::kCellPx;
+  const double radius = options_.local_region_radius_px;
+  Eigen::Vector2d low = active_.front().centre, high = low;
+  for (const ActiveRegion& region : active_) {
+    low = low.cwiseMin(region.centre);
+    high = high.cwiseMax(region.centre);
+  }
+  // Every pixel within `radius` of a centre lies in [first, last].
+  const Eigen::Vector2i first((low.array() - radius).floor().cast<int>());
+  const Eigen::Vector2i last((high.array() + radius).ceil().cast<int>());
+  cover_.origin = first;
+  cover_.cols = (last.x() - first.x()) / kCell + 1;
+  cover_.rows = (last.y() - first.y()) / kCell + 1;
+  cover_.cells.resize(static_cast<size_t>(cover_.cols) * cover_.rows);
+  for (size_t r = 0; r < active_.size(); ++r) {
+    const Eigen::Vector2d& centre = active_[r].centre;
+    const Eigen::Vector2d relative = centre - first.cast<double>();
+    const int col_begin =
+        std::max(0, static_cast<int>(std::floor((relative.x() - radius) / kCell)));
+    const int col_end =
+        std::min(cover_.cols - 1, static_cast<int>(std::floor((relative.x() + radius) / kCell)));
+    const int row_begin =
+        std::max(0, static_cast<int>(std::floor((relative.y() - radius) / kCell)));
+    const int row_end =
+        std::min(cover_.rows - 1, static_cast<int>(std::floor((relative.y() + radius) / kCell)));
+    for (int row = row_begin; row <= row_end; ++row) {
+      for (int col = col_begin; col <= col_end; ++col) {
+        // The cell's pixels span [corner, corner + kCell − 1]; the point of that rectangle
+        // nearest the centre is within the radius iff one of its pixels may be.
+        const Eigen::Vector2d corner =
+            (first + Eigen::Vector2i(col * kCell, row * kCell)).cast<double>();
+        const Eigen::Vector2d nearest =
+            centre.cwiseMax(corner).cwiseMin(corner + Eigen::Vector2d::Constant(kCell - 1));
+        if ((nearest - centre).squaredNorm() <= radius * radius) {
+          cover_.cells[static_cast<size_t>(row) * cover_.cols + col].push_back(static_cast<int>(r));
+        }
+      }
+    }
+  }
+}
+
+const ColorHistograms& LocalColorModel::region_histograms(int region) const {
+  BCOT_CHECK(region >= 0 && region < num_regions());
+  return regions_[region].histograms;
+}
+
+const std::vector<int>* LocalColorModel::CoverGrid::Cell(const Eigen::Vector2i& pixel) const {
+  const Eigen::Vector2i relative = pixel - origin;
+  if (relative.x() < 0 || relative.y() < 0) return nullptr;
+  const int col = relative.x() / kCellPx, row = relative.y() / kCellPx;
+  if (col >= cols || row >= rows) return nullptr;
+  return &cells[static_cast<size_t>(row) * cols + col];
 }
 
 std::vector<double> LocalColorModel::ForegroundPosteriors(
     const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const {
-  std::vector<double> posteriors = fallback_.ForegroundPosteriors(image, pixels);
+  // The fallback's posterior only where no active region covers the pixel.
+  std::vector<double> posteriors(pixels.size());
   const double radius_squared = options_.local_region_radius_px * options_.local_region_radius_px;
   std::vector<const ColorHistograms*> histograms;
   histograms.reserve(active_.size());
@@ -325,18 +385,23 @@ std::vector<double> LocalColorModel::ForegroundPosteriors(
     const ColorHistograms& h = regions_[region.region].histograms;
     histograms.push_back(h.initialized() ? &h : nullptr);
   }
+  const ColorHistograms& global = fallback_.histograms();  // every histogram bins alike
   for (size_t p = 0; p < pixels.size(); ++p) {
-    const Eigen::Vector2d pixel = pixels[p].cast<double>();
-    const cv::Vec3b color = image(pixels[p].y(), pixels[p].x());
+    BCOT_CHECK(pixels[p].x() >= 0 && pixels[p].y() >= 0 && pixels[p].x() < image.cols &&
+               pixels[p].y() < image.rows);
+    const int bin = global.Bin(image(pixels[p].y(), pixels[p].x()));
     double sum = 0.0;
     int count = 0;
-    for (size_t r = 0; r < active_.size(); ++r) {
-      if (histograms[r] == nullptr) continue;
-      if ((pixel - active_[r].centre).squaredNorm() > radius_squared) continue;
-      sum += histograms[r]->ForegroundPosterior(histograms[r]->Bin(color));
-      ++count;
+    if (const std::vector<int>* candidates = cover_.Cell(pixels[p])) {
+      const Eigen::Vector2d pixel = pixels[p].cast<double>();
+      for (const int r : *candidates) {
+        if (histograms[r] == nullptr) continue;
+        if ((pixel - active_[r].centre).squaredNorm() > radius_squared) continue;
+        sum += histograms[r]->ForegroundPosterior(bin);
+        ++count;
+      }
     }
-    if (count > 0) posteriors[p] = sum / count;
+    posteriors[p] = count > 0 ? sum / count : global.ForegroundPosterior(bin);
   }
   return posteriors;
 }
@@ -355,6 +420,26 @@ std::unique_ptr<ColorModel> MakeColorModel(const ColorModelOptions& options,
     return std::make_unique<LocalColorModel>(options, object_diameter_mm);
   }
   return std::make_unique<GlobalColorModel>(options);
+}
+
+ViewColorModels::ViewColorModels(const ColorModelOptions& options, double object_diameter_mm) {
+  const ColorModelOptions refine = RefineColorModelOptions(options);
+  if (refine.kind != options.kind) refine_ = MakeColorModel(refine, object_diameter_mm);
+  if (options.kind == ColorModelKind::kGlobal && refine.kind == ColorModelKind::kLocal) {
+    coarse_ = &static_cast<const LocalColorModel&>(*refine_).fallback();
+  } else {
+    own_coarse_ = MakeColorModel(options, object_diameter_mm);
+    coarse_ = own_coarse_.get();
+  }
+}
+
+void ViewColorModels::Update(const cv::Mat3b& image, const Silhouette& silhouette) {
+  if (own_coarse_ != nullptr) own_coarse_->Update(image, silhouette);
+  if (refine_ != nullptr) refine_->Update(image, silhouette);
+}
+
+bool ViewColorModels::UsesContour() const {
+  return coarse_->UsesContour() || (refine_ != nullptr && refine_->UsesContour());
 }
 
 }  // namespace bcot

@@ -90,9 +90,9 @@ MultiViewTracker::MultiViewTracker(const RayCaster& caster, std::vector<TrackedV
       symmetry_(symmetry),
       viewpoint_model_(std::move(viewpoint_model)) {
   UseImageResponse(InitialImageResponse(options));
-  color_models_.resize(views_.size());
-  refine_color_models_.resize(views_.size());
-  for (size_t v = 0; v < views_.size(); ++v) ResetColorModels(v);
+  for (size_t v = 0; v < views_.size(); ++v) {
+    color_models_.emplace_back(options_.color, caster_.mesh().diameter());
+  }
 }
 
 void MultiViewTracker::UseImageResponse(const ImageResponse& response) {
@@ -103,14 +103,6 @@ void MultiViewTracker::UseImageResponse(const ImageResponse& response) {
       std::make_unique<FrameProblem>(caster_, resolved.frame, symmetry_, viewpoint_model_.get());
   bootstrap_problem_ = std::make_unique<FrameProblem>(caster_, BootstrapFrameOptions(resolved),
                                                       symmetry_, viewpoint_model_.get());
-}
-
-void MultiViewTracker::ResetColorModels(size_t view) {
-  const double diameter = caster_.mesh().diameter();
-  color_models_[view] = MakeColorModel(options_.color, diameter);
-  const ColorModelOptions refine = RefineColorModelOptions(options_.color);
-  refine_color_models_[view] =
-      refine.kind != options_.color.kind ? MakeColorModel(refine, diameter) : nullptr;
 }
 
 Status MultiViewTracker::CheckImages(const std::vector<cv::Mat3b>& images) const {
@@ -134,18 +126,15 @@ void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
   const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
   // Each view updates only its own models: the views are learned concurrently.
   tbb::parallel_for(size_t{0}, views_.size(), [&](size_t v) {
-    if (fresh) ResetColorModels(v);
+    if (fresh) color_models_[v] = ViewColorModels(options_.color, caster_.mesh().diameter());
     const Eigen::Isometry3d cam_from_template =
         views_[v].cam_from_rig * rig_from_objcentre * objcentre_from_template;
-    const bool uses_contour =
-        color_models_[v]->UsesContour() ||
-        (refine_color_models_[v] != nullptr && refine_color_models_[v]->UsesContour());
     const Silhouette silhouette =
-        uses_contour ? RenderSilhouetteContour(caster_, views_[v].camera, cam_from_template,
-                                               options_.frame.region.contour)
-                     : RenderSilhouetteMask(caster_, views_[v].camera, cam_from_template);
-    color_models_[v]->Update(images[v], silhouette);
-    if (refine_color_models_[v] != nullptr) refine_color_models_[v]->Update(images[v], silhouette);
+        color_models_[v].UsesContour()
+            ? RenderSilhouetteContour(caster_, views_[v].camera, cam_from_template,
+                                      options_.frame.region.contour)
+            : RenderSilhouetteMask(caster_, views_[v].camera, cam_from_template);
+    color_models_[v].Update(images[v], silhouette);
   });
 }
 
@@ -154,8 +143,8 @@ std::vector<FrameView> MultiViewTracker::FrameViews(const std::vector<cv::Mat3b>
   std::vector<FrameView> frame_views;
   for (size_t v = 0; v < views_.size(); ++v) {
     frame_views.push_back({&views_[v].camera, views_[v].cam_from_rig, &images[v],
-                           color_models_[v].get(), views_[v].weight,
-                           refine ? refine_color_models_[v].get() : nullptr, views_[v].chroma});
+                           &color_models_[v].coarse(), views_[v].weight,
+                           refine ? color_models_[v].refine() : nullptr, views_[v].chroma});
   }
   return frame_views;
 }
@@ -205,7 +194,7 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
   BCOT_RETURN_IF_ERROR(CheckImages(images));
   const Eigen::Isometry3d start = *rig_from_objcentre;
   FrameSummary summary;
-  const bool has_refinement_models = refine_color_models_.front() != nullptr;
+  const bool has_refinement_models = color_models_.front().refine() != nullptr;
   for (int pass = 0; pass < options_.bootstrap_passes; ++pass) {
     const Eigen::Isometry3d before = *rig_from_objcentre;
     LearnColors(images, *rig_from_objcentre, /*fresh=*/true);

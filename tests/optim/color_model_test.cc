@@ -159,6 +159,86 @@ TEST_F(ColorModelSceneTest, LocalPosteriorsDiscriminateAndRegionsPersist) {
   EXPECT_LT(local->num_regions(), active + active / 4);
 }
 
+// A pixel's local posterior is the mean P_f of the active regions whose disc holds it, in the
+// order of the active regions (the model looks them up in a grid of cells; this sums over all of
+// them), and the global fallback's where none does: exactly, at every pixel of the image, for
+// radii below, near and above the grid's cell size, after a move that activates other regions.
+TEST_F(ColorModelSceneTest, LocalPosteriorsAverageTheRegionsCoveringEachPixel) {
+  std::vector<Eigen::Vector2i> pixels;
+  for (int y = 0; y < image_.rows; ++y) {
+    for (int x = 0; x < image_.cols; ++x) pixels.emplace_back(x, y);
+  }
+  const Eigen::Isometry3d moved =
+      cam_from_objcentre_ * ExpSE3((Vector6d() << 4.0, -3.0, 0.0, 0.1, 0.0, 0.2).finished());
+  for (const double radius : {7.3, 16.0, 40.0, 95.5}) {
+    SCOPED_TRACE(radius);
+    ColorModelOptions options;
+    options.kind = ColorModelKind::kLocal;
+    options.local_region_radius_px = radius;
+    LocalColorModel model(options, mesh_->diameter());
+    model.Update(image_, silhouette_);
+    model.Update(image_, SilhouetteAt(moved));
+    ASSERT_GT(model.active_regions().size(), 10u);
+    const std::vector<double> posteriors = model.ForegroundPosteriors(image_, pixels);
+    const ColorHistograms& global = model.fallback().histograms();
+    int covered = 0;
+    for (size_t p = 0; p < pixels.size(); ++p) {
+      const int bin = global.Bin(image_(pixels[p].y(), pixels[p].x()));
+      double sum = 0.0;
+      int count = 0;
+      for (const LocalColorModel::ActiveRegion& region : model.active_regions()) {
+        const ColorHistograms& histograms = model.region_histograms(region.region);
+        if (!histograms.initialized()) continue;
+        if ((pixels[p].cast<double>() - region.centre).squaredNorm() > radius * radius) continue;
+        sum += histograms.ForegroundPosterior(bin);
+        ++count;
+      }
+      covered += count > 0;
+      const double expected = count > 0 ? sum / count : global.ForegroundPosterior(bin);
+      ASSERT_EQ(posteriors[p], expected) << "pixel " << pixels[p].transpose();
+    }
+    EXPECT_GT(covered, 100);
+    EXPECT_LT(covered, static_cast<int>(pixels.size()));
+  }
+}
+
+// A global coarse model beside a local refinement is the local model's own fallback: the same
+// posteriors as a global model learned on its own, after every update. Other combinations keep
+// one model per kind, and no refinement model when the kinds agree.
+TEST_F(ColorModelSceneTest, ViewColorModelsShareTheGlobalModelWithTheLocalOne) {
+  ColorModelOptions options;  // global, refined by local
+  ViewColorModels models(options, mesh_->diameter());
+  ASSERT_NE(models.refine(), nullptr);
+  EXPECT_NE(dynamic_cast<const LocalColorModel*>(models.refine()), nullptr);
+  EXPECT_EQ(&models.coarse(), &static_cast<const LocalColorModel*>(models.refine())->fallback());
+  EXPECT_TRUE(models.UsesContour());
+  GlobalColorModel alone(options);
+  std::vector<Eigen::Vector2i> pixels;
+  for (int y = 0; y < image_.rows; y += 3) {
+    for (int x = 0; x < image_.cols; x += 3) pixels.emplace_back(x, y);
+  }
+  const Eigen::Isometry3d moved =
+      cam_from_objcentre_ * ExpSE3((Vector6d() << 2.0, 1.0, 0.0, 0.05, 0.1, 0.0).finished());
+  for (const Silhouette& silhouette : {silhouette_, SilhouetteAt(moved)}) {
+    models.Update(image_, silhouette);
+    alone.Update(image_, silhouette);
+    EXPECT_EQ(models.coarse().ForegroundPosteriors(image_, pixels),
+              alone.ForegroundPosteriors(image_, pixels));
+  }
+
+  options.refine_kind.reset();
+  const ViewColorModels single(options, mesh_->diameter());
+  EXPECT_EQ(single.refine(), nullptr);
+  EXPECT_NE(dynamic_cast<const GlobalColorModel*>(&single.coarse()), nullptr);
+  EXPECT_FALSE(single.UsesContour());
+
+  options.kind = ColorModelKind::kLocal;
+  options.refine_kind = ColorModelKind::kGlobal;
+  const ViewColorModels swapped(options, mesh_->diameter());
+  EXPECT_NE(dynamic_cast<const LocalColorModel*>(&swapped.coarse()), nullptr);
+  EXPECT_NE(dynamic_cast<const GlobalColorModel*>(swapped.refine()), nullptr);
+}
+
 // The global model samples the inside pixels farther than sample_margin_px from any outside
 // pixel and the outside pixels within (margin, band] of the nearest inside one (Euclidean
 // distances between pixel centres, the image's edge not counting as outside): the same bins,

@@ -187,6 +187,8 @@ class LocalColorModel final : public ColorModel {
       const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const override;
   bool initialized() const override { return fallback_.initialized(); }
   bool UsesContour() const override { return true; }
+  // The global model kept alongside (the posteriors of pixels no region covers).
+  const GlobalColorModel& fallback() const { return fallback_; }
 
   // Regions of the last Update (centre in the image) and the number ever learned.
   struct ActiveRegion {
@@ -195,6 +197,8 @@ class LocalColorModel final : public ColorModel {
   };
   const std::vector<ActiveRegion>& active_regions() const { return active_; }
   int num_regions() const { return static_cast<int>(regions_.size()); }
+  // The histograms of learned region `region` (ActiveRegion::region; CHECKed).
+  const ColorHistograms& region_histograms(int region) const;
 
  private:
   struct Region {
@@ -203,11 +207,28 @@ class LocalColorModel final : public ColorModel {
     Eigen::Vector2d last_centre;  // image position at the region's last update
   };
 
+  // Which active regions' discs can reach a pixel: a grid of square cells over the active
+  // discs' bounding box, each cell listing, in increasing order, the indices into active_ of
+  // the discs that reach one of its pixels. ForegroundPosteriors then tests a pixel against a
+  // handful of discs instead of all of them, in the same order (the same sums).
+  struct CoverGrid {
+    static constexpr int kCellPx = 16;
+    Eigen::Vector2i origin = Eigen::Vector2i::Zero();  // first pixel of cell (0, 0)
+    int cols = 0;
+    int rows = 0;
+    std::vector<std::vector<int>> cells;  // row-major
+    // The list of the cell holding `pixel`; null outside the grid.
+    const std::vector<int>* Cell(const Eigen::Vector2i& pixel) const;
+  };
+  // cover_ for active_ (after each Update).
+  void BuildCoverGrid();
+
   ColorModelOptions options_;
   double anchor_radius_mm_;
   GlobalColorModel fallback_;
   std::vector<Region> regions_;
   std::vector<ActiveRegion> active_;
+  CoverGrid cover_;
 };
 
 // Area shared by two discs of `radius` (> 0) whose centres are `distance` (>= 0) apart, as a
@@ -220,5 +241,29 @@ ColorModelOptions RefineColorModelOptions(const ColorModelOptions& options);
 // The model `options.kind` asks for. `options` must be valid (CHECKed).
 std::unique_ptr<ColorModel> MakeColorModel(const ColorModelOptions& options,
                                            double object_diameter_mm);
+
+// The colour models of one view: the model of the coarse levels (`options.kind`) and, when
+// `options.refine_kind` differs, the one of the full-resolution rounds
+// (RefineColorModelOptions). Both learn from every Update. A global coarse model with a local
+// refinement is the local model's own fallback (LocalColorModel::fallback(): the same options
+// but the kind, so the same histograms), so one update and one set of boundary distances
+// serve both.
+class ViewColorModels {
+ public:
+  // `options` must be valid (CHECKed); `object_diameter_mm` as for LocalColorModel.
+  ViewColorModels(const ColorModelOptions& options, double object_diameter_mm);
+
+  void Update(const cv::Mat3b& image, const Silhouette& silhouette);
+  const ColorModel& coarse() const { return *coarse_; }
+  // Null when the full-resolution rounds read the coarse model.
+  const ColorModel* refine() const { return refine_.get(); }
+  // True when Update needs the silhouette's contour (see ColorModel::UsesContour).
+  bool UsesContour() const;
+
+ private:
+  std::unique_ptr<ColorModel> own_coarse_;  // null when the coarse model is refine_'s fallback
+  std::unique_ptr<ColorModel> refine_;
+  const ColorModel* coarse_ = nullptr;  // own_coarse_ or refine_'s fallback (both on the heap)
+};
 
 }  // namespace bcot

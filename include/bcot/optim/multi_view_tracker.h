@@ -130,8 +130,6 @@ class MultiViewTracker {
                    const std::optional<RotationalSymmetry>& symmetry,
                    std::shared_ptr<const SparseViewpointModel> viewpoint_model);
   Status CheckImages(const std::vector<cv::Mat3b>& images) const;
-  // Replaces view `view`'s colour models by fresh (unlearned) ones.
-  void ResetColorModels(size_t view);
   // Updates every view's colour models at the pose; `fresh` replaces the models first.
   void LearnColors(const std::vector<cv::Mat3b>& images,
                    const Eigen::Isometry3d& rig_from_objcentre, bool fresh);
@@ -168,10 +166,7 @@ class MultiViewTracker {
   // The frame problems of options_ with image_response_ (resolved) as the edge response.
   std::unique_ptr<FrameProblem> problem_;
   std::unique_ptr<FrameProblem> bootstrap_problem_;  // problem_ with bootstrap_rounds
-  std::vector<std::unique_ptr<ColorModel>> color_models_;
-  // Per view, the model of the full-resolution rounds when color.refine_kind differs from
-  // color.kind, else null.
-  std::vector<std::unique_ptr<ColorModel>> refine_color_models_;
+  std::vector<ViewColorModels> color_models_;        // per view
   // The estimate of the frame before the last one, when Track produced both.
   std::optional<Eigen::Isometry3d> previous_rig_from_objcentre_;
 };
