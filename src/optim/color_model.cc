@@ -169,6 +169,27 @@ class BoundaryDistances {
   cv::Mat1f to_inside_;
 };
 
+// Every pixel of `distances.box()` as a sample: 2·bin + 1 inside the mask, 2·bin outside, −1
+// within the margin of the other side (not sampled). Read once per pixel here, however many of
+// the local model's overlapping discs hold it.
+cv::Mat1i SampleCodes(const cv::Mat3b& image, const cv::Mat1b& mask,
+                      const BoundaryDistances& distances, const ColorHistograms& binner) {
+  const cv::Rect& box = distances.box();
+  cv::Mat1i codes(box.size());
+  for (int y = box.y; y < box.y + box.height; ++y) {
+    const cv::Vec3b* colors = image.ptr<cv::Vec3b>(y);
+    const unsigned char* inside = mask.ptr<unsigned char>(y);
+    int* code = codes.ptr<int>(y - box.y);
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      const bool is_inside = inside[x] != 0;
+      code[x - box.x] = distances.NearOtherSide(x, y, is_inside)
+                            ? -1
+                            : (binner.Bin(colors[x]) << 1) | static_cast<int>(is_inside);
+    }
+  }
+  return codes;
+}
+
 }  // namespace internal
 
 // ---------------------------------------------------------------------------------------------
@@ -182,29 +203,29 @@ GlobalColorModel::GlobalColorModel(const ColorModelOptions& options)
 void GlobalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouette) {
   BCOT_CHECK(image.size() == silhouette.mask.size());
   if (cv::countNonZero(silhouette.mask) == 0) return;
-  Update(image, silhouette,
-         internal::BoundaryDistances(silhouette.mask, options_.background_band_px + 1,
-                                     options_.sample_margin_px));
+  const internal::BoundaryDistances distances(silhouette.mask, options_.background_band_px + 1,
+                                              options_.sample_margin_px);
+  Update(distances, internal::SampleCodes(image, silhouette.mask, distances, histograms_));
 }
 
 // A box grown further than band + 1 adds only pixels farther than `band` from the silhouette,
 // which are not sampled, and leaves the others' distances and their row-major order as they
 // are: the histograms are the same.
-void GlobalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouette,
-                              const internal::BoundaryDistances& distances) {
+void GlobalColorModel::Update(const internal::BoundaryDistances& distances,
+                              const cv::Mat1i& codes) {
   const int band = options_.background_band_px;
   const cv::Rect& box = distances.box();
   std::vector<int> foreground_bins;
   std::vector<int> background_bins;
   for (int y = box.y; y < box.y + box.height; ++y) {
-    const cv::Vec3b* colors = image.ptr<cv::Vec3b>(y);
+    const int* code = codes.ptr<int>(y - box.y);
     for (int x = box.x; x < box.x + box.width; ++x) {
-      const bool inside = silhouette.mask(y, x) != 0;
-      if (distances.NearOtherSide(x, y, inside)) continue;
-      if (inside) {
-        foreground_bins.push_back(histograms_.Bin(colors[x]));
+      const int sample = code[x - box.x];
+      if (sample < 0) continue;
+      if (sample & 1) {
+        foreground_bins.push_back(sample >> 1);
       } else if (distances.ToInside(x, y) <= static_cast<float>(band)) {
-        background_bins.push_back(histograms_.Bin(colors[x]));
+        background_bins.push_back(sample >> 1);
       }
     }
   }
@@ -260,9 +281,12 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
   const internal::BoundaryDistances distances(silhouette.mask,
                                               std::max(reach + 2, options_.background_band_px + 1),
                                               options_.sample_margin_px);
-  fallback_.Update(image, silhouette, distances);
+  const cv::Mat1i codes = internal::SampleCodes(image, silhouette.mask, distances, binner);
+  fallback_.Update(distances, codes);
   active_.clear();
   const cv::Rect& box = distances.box();
+  std::vector<int> foreground_bins;
+  std::vector<int> background_bins;
   double arc_since_centre = 0.0;
   for (size_t i = 0; i < silhouette.contour.size(); ++i) {
     const ContourPoint& point = silhouette.contour[i];
@@ -283,16 +307,17 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
       }
     }
     if (region >= 0 && is_active[region]) continue;
-    std::vector<int> foreground_bins;
-    std::vector<int> background_bins;
+    foreground_bins.clear();
+    background_bins.clear();
     const int cx = static_cast<int>(std::lround(point.pixel.x()));
     const int cy = static_cast<int>(std::lround(point.pixel.y()));
     for (int y = std::max(box.y, cy - reach); y <= std::min(box.br().y - 1, cy + reach); ++y) {
+      const int* code = codes.ptr<int>(y - box.y);
       for (int x = std::max(box.x, cx - reach); x <= std::min(box.br().x - 1, cx + reach); ++x) {
         if ((Eigen::Vector2d(x, y) - point.pixel).squaredNorm() > radius * radius) continue;
-        const bool inside = silhouette.mask(y, x) != 0;
-        if (distances.NearOtherSide(x, y, inside)) continue;
-        (inside ? foreground_bins : background_bins).push_back(binner.Bin(image(y, x)));
+        const int sample = code[x - box.x];
+        if (sample < 0) continue;
+        (sample & 1 ? foreground_bins : background_bins).push_back(sample >> 1);
       }
     }
     if (region < 0) {

@@ -169,10 +169,10 @@ class GlobalColorModel final : public ColorModel {
 
  private:
   friend class LocalColorModel;
-  // Update from boundary distances of `silhouette`'s (non-empty) mask the caller computed on a
-  // box grown by at least background_band_px + 1 (LocalColorModel shares its own).
-  void Update(const cv::Mat3b& image, const Silhouette& silhouette,
-              const internal::BoundaryDistances& distances);
+  // Update from boundary distances of a (non-empty) mask the caller computed on a box grown by
+  // at least background_band_px + 1, and the box's samples (internal::SampleCodes; the local
+  // model shares its own).
+  void Update(const internal::BoundaryDistances& distances, const cv::Mat1i& codes);
 
   ColorModelOptions options_;
   ColorHistograms histograms_;
