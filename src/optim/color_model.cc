@@ -273,7 +273,6 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
   std::vector<bool> is_active(regions_.size(), false);
   const double radius = options_.local_region_radius_px;
   const int reach = static_cast<int>(std::ceil(radius));
-  const ColorHistograms binner(options_.bins_per_channel);
   // Pixels within the sample margin of the silhouette boundary are mixed (anti-aliased,
   // blurred) and not sampled, as in the global model. Every sampled pixel lies within `reach`
   // of a contour point, so within reach + 2 px of the mask's bounding box (the box's side).
@@ -281,7 +280,9 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
   const internal::BoundaryDistances distances(silhouette.mask,
                                               std::max(reach + 2, options_.background_band_px + 1),
                                               options_.sample_margin_px);
-  const cv::Mat1i codes = internal::SampleCodes(image, silhouette.mask, distances, binner);
+  // Every histogram of the model bins alike: the fallback's bins the samples.
+  const cv::Mat1i codes =
+      internal::SampleCodes(image, silhouette.mask, distances, fallback_.histograms());
   fallback_.Update(distances, codes);
   active_.clear();
   const cv::Rect& box = distances.box();
