@@ -385,6 +385,18 @@ void DeclareColorAndTracker(OptionSchema<AnnotateOptions>* s) {
                                      {"object", LocalBackgroundMemory::kObject}},
       "what a local region's background histogram keeps when the region moves in the image "
       "(image: only where its old and new discs overlap; object: all of it, as RBOT)");
+  s->AddChoice(
+       "color.samples", [](auto& o) -> auto& { return o.tracker.color_samples; },
+       Choices<ColorSampleSource>{{"silhouette", ColorSampleSource::kSilhouette},
+                                  {"viewpoint_model", ColorSampleSource::kViewpointModel}},
+       "where the colour models learn after each frame: the silhouette rendered at the pose, or "
+       "along the sparse viewpoint model's contour without a render (lines.viewpoint_model only)")
+      .Check([](const AnnotateOptions& o) {
+        return o.tracker.color_samples == ColorSampleSource::kViewpointModel &&
+                       !o.tracker.frame.lines_from_viewpoint_model
+                   ? "must be silhouette unless lines.viewpoint_model is true"
+                   : "";
+      });
   s->Add(
        "tracker.velocity_prediction",
        [](auto& o) -> auto& { return o.tracker.velocity_prediction; }, "",

@@ -190,6 +190,86 @@ cv::Mat1i SampleCodes(const cv::Mat3b& image, const cv::Mat1b& mask,
   return codes;
 }
 
+namespace {
+
+// `contour` with lines added between neighbours so that consecutive lines are at most
+// kLineSpacingPx apart: between points i and i + 1 whose distance g is larger than that and at
+// most twice the median distance of neighbours (so on the same contour: the points are evenly
+// spaced along each contour, and a jump to the next contour is longer) and whose normals differ
+// by less than 60°, ⌈g / kLineSpacingPx⌉ − 1 lines at even steps, pixel and normal interpolated,
+// the extents those of the nearer of the two. (The smaller of the two extents cuts the lines
+// beside a concavity short and leaves its background unseen: on the spool scene of
+// color_model_test.cc the local model's mean P_f 4–30 px outside was 0.09 with it, 0.027 with
+// the nearer one's; lines 1 px apart: 0.048.)
+// Most distance between neighbouring lines after DensifyContourLines (px).
+constexpr double kLineSpacingPx = 0.5;
+
+std::vector<ProjectedContourPoint> DensifyContourLines(
+    const std::vector<ProjectedContourPoint>& contour) {
+  if (contour.size() < 3) return contour;
+  std::vector<double> gaps;
+  for (size_t i = 0; i + 1 < contour.size(); ++i) {
+    gaps.push_back((contour[i + 1].pixel - contour[i].pixel).norm());
+  }
+  std::vector<double> sorted = gaps;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double max_gap = 2.0 * sorted[sorted.size() / 2];
+  std::vector<ProjectedContourPoint> dense;
+  dense.reserve(contour.size() * static_cast<size_t>(std::max(1.0, std::ceil(max_gap))));
+  for (size_t i = 0; i < contour.size(); ++i) {
+    dense.push_back(contour[i]);
+    if (i + 1 == contour.size()) break;
+    const ProjectedContourPoint& a = contour[i];
+    const ProjectedContourPoint& b = contour[i + 1];
+    if (gaps[i] <= kLineSpacingPx || gaps[i] > max_gap || a.normal.dot(b.normal) < 0.5) continue;
+    const int steps = static_cast<int>(std::ceil(gaps[i] / kLineSpacingPx));
+    for (int k = 1; k < steps; ++k) {
+      const double f = static_cast<double>(k) / steps;
+      ProjectedContourPoint between = a;
+      between.pixel = (1.0 - f) * a.pixel + f * b.pixel;
+      between.normal = ((1.0 - f) * a.normal + f * b.normal).normalized();
+      between.inside_px = f < 0.5 ? a.inside_px : b.inside_px;
+      between.outside_px = f < 0.5 ? a.outside_px : b.outside_px;
+      dense.push_back(between);
+    }
+  }
+  return dense;
+}
+
+}  // namespace
+
+ContourLineSamples SampleContourLines(const cv::Mat3b& image,
+                                      const std::vector<ProjectedContourPoint>& contour,
+                                      const ColorModelOptions& options,
+                                      const ColorHistograms& binner) {
+  ContourLineSamples samples;
+  const int first = static_cast<int>(std::floor(options.sample_margin_px)) + 1;
+  samples.first_t = first;
+  const double band = options.background_band_px;
+  for (const ProjectedContourPoint& point : DensifyContourLines(contour)) {
+    samples.line_pixels.push_back(point.pixel);
+    samples.line_normals.push_back(point.normal);
+    samples.line_begin.push_back(static_cast<int>(samples.codes.size()));
+    for (const bool inside : {true, false}) {
+      if (!inside) samples.line_outside.push_back(static_cast<int>(samples.codes.size()));
+      const double extent = inside ? point.inside_px : point.outside_px;
+      const double last = std::min(extent - options.sample_margin_px, band);  // extent may be +∞
+      const Eigen::Vector2d step = inside ? -point.normal : point.normal;
+      for (int t = first; t <= last; ++t) {
+        // The nearest pixel (std::lround's rounding of halves away from zero differs only at
+        // exact halves, and costs a library call per sample).
+        const Eigen::Vector2d at = point.pixel + t * step;
+        const int x = static_cast<int>(std::floor(at.x() + 0.5));
+        const int y = static_cast<int>(std::floor(at.y() + 0.5));
+        if (x < 0 || y < 0 || x >= image.cols || y >= image.rows) break;
+        samples.codes.push_back((binner.Bin(image(y, x)) << 1) | static_cast<int>(inside));
+      }
+    }
+  }
+  samples.line_begin.push_back(static_cast<int>(samples.codes.size()));
+  return samples;
+}
+
 }  // namespace internal
 
 // ---------------------------------------------------------------------------------------------
@@ -228,6 +308,21 @@ void GlobalColorModel::Update(const internal::BoundaryDistances& distances,
         background_bins.push_back(sample >> 1);
       }
     }
+  }
+  histograms_.Update(foreground_bins, background_bins, options_.learning_rate_foreground,
+                     options_.learning_rate_background);
+}
+
+void GlobalColorModel::UpdateAlongContour(const cv::Mat3b& image,
+                                          const std::vector<ProjectedContourPoint>& contour) {
+  Update(internal::SampleContourLines(image, contour, options_, histograms_));
+}
+
+void GlobalColorModel::Update(const internal::ContourLineSamples& samples) {
+  std::vector<int> foreground_bins;
+  std::vector<int> background_bins;
+  for (const int sample : samples.codes) {
+    (sample & 1 ? foreground_bins : background_bins).push_back(sample >> 1);
   }
   histograms_.Update(foreground_bins, background_bins, options_.learning_rate_foreground,
                      options_.learning_rate_background);
@@ -298,15 +393,7 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
     }
     arc_since_centre = 0.0;
     // The region with the nearest anchor within the radius, else a new one.
-    int region = -1;
-    double best_squared = anchor_radius_mm_ * anchor_radius_mm_;
-    for (size_t r = 0; r < regions_.size(); ++r) {
-      const double d2 = (regions_[r].anchor_in_template - point.point_in_object).squaredNorm();
-      if (d2 <= best_squared) {
-        best_squared = d2;
-        region = static_cast<int>(r);
-      }
-    }
+    int region = NearestRegion(point.point_in_object);
     if (region >= 0 && is_active[region]) continue;
     foreground_bins.clear();
     background_bins.clear();
@@ -327,20 +414,109 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
           {point.point_in_object, ColorHistograms(options_.bins_per_channel), point.pixel});
       is_active.push_back(false);
     }
-    Region& learned = regions_[region];
-    double background_rate = options_.learning_rate_background;
-    if (options_.local_background_memory == LocalBackgroundMemory::kImage) {
-      const double overlap =
-          DiscOverlapFraction((point.pixel - learned.last_centre).norm(), radius);
-      background_rate = 1.0 - (1.0 - background_rate) * overlap;
-    }
-    learned.histograms.Update(foreground_bins, background_bins, options_.learning_rate_foreground,
-                              background_rate);
-    learned.last_centre = point.pixel;
+    LearnRegion(region, point.pixel, foreground_bins, background_bins);
     is_active[region] = true;
     active_.push_back({point.pixel, region});
   }
   BuildCoverGrid();
+}
+
+void LocalColorModel::UpdateAlongContour(const cv::Mat3b& image,
+                                         const std::vector<ProjectedContourPoint>& contour) {
+  active_.clear();
+  if (contour.empty()) {
+    BuildCoverGrid();
+    return;
+  }
+  const internal::ContourLineSamples samples =
+      internal::SampleContourLines(image, contour, options_, fallback_.histograms());
+  fallback_.Update(samples);
+  // The centres first (regions found or created as in Update), then each sample to the discs
+  // holding it through the cover grid of those centres.
+  const double spacing_squared =
+      options_.local_region_spacing_px * options_.local_region_spacing_px;
+  std::vector<bool> is_active(regions_.size(), false);
+  for (const ProjectedContourPoint& point : contour) {
+    const bool near_a_centre =
+        std::any_of(active_.begin(), active_.end(), [&](const ActiveRegion& active) {
+          return (active.centre - point.pixel).squaredNorm() < spacing_squared;
+        });
+    if (near_a_centre) continue;
+    int region = NearestRegion(point.point_in_object);
+    if (region >= 0 && is_active[region]) continue;
+    if (region < 0) {
+      region = static_cast<int>(regions_.size());
+      regions_.push_back(
+          {point.point_in_object, ColorHistograms(options_.bins_per_channel), point.pixel});
+      is_active.push_back(false);
+    }
+    is_active[region] = true;
+    active_.push_back({point.pixel, region});
+  }
+  BuildCoverGrid();
+  // Each region takes the samples of each line that lie within its disc. Along a line with
+  // contour point c and normal n, the point c + s·n is within the radius ρ of the centre m for
+  // s in [−d·n − h, −d·n + h], d = c − m, h = √((d·n)² − |d|² + ρ²) (no such s when the root's
+  // argument is negative); outside samples sit at s = t, inside ones at s = −t.
+  const double radius = options_.local_region_radius_px;
+  std::vector<std::vector<int>> foreground_bins(active_.size());
+  std::vector<std::vector<int>> background_bins(active_.size());
+  // The samples [begin, end) of one side at distances t_low..t_high to region r.
+  auto take = [&](int begin, int end, int t_low, int t_high, size_t r) {
+    const int from = begin + std::max(0, t_low - samples.first_t);
+    const int to = std::min(end, begin + t_high - samples.first_t + 1);
+    for (int i = from; i < to; ++i) {
+      const int sample = samples.codes[i];
+      (sample & 1 ? foreground_bins : background_bins)[r].push_back(sample >> 1);
+    }
+  };
+  for (size_t line = 0; line < samples.line_pixels.size(); ++line) {
+    const Eigen::Vector2d& c = samples.line_pixels[line];
+    const Eigen::Vector2d& n = samples.line_normals[line];
+    for (size_t r = 0; r < active_.size(); ++r) {
+      const Eigen::Vector2d d = c - active_[r].centre;
+      const double dn = d.dot(n);
+      const double argument = dn * dn - d.squaredNorm() + radius * radius;
+      if (argument < 0.0) continue;
+      const double h = std::sqrt(argument);
+      const double s_low = -dn - h, s_high = -dn + h;
+      take(samples.line_begin[line], samples.line_outside[line],
+           static_cast<int>(std::ceil(-s_high)), static_cast<int>(std::floor(-s_low)), r);
+      take(samples.line_outside[line], samples.line_begin[line + 1],
+           static_cast<int>(std::ceil(s_low)), static_cast<int>(std::floor(s_high)), r);
+    }
+  }
+  for (size_t r = 0; r < active_.size(); ++r) {
+    LearnRegion(active_[r].region, active_[r].centre, foreground_bins[r], background_bins[r]);
+  }
+}
+
+int LocalColorModel::NearestRegion(const Eigen::Vector3d& point_in_object) const {
+  int region = -1;
+  double best_squared = anchor_radius_mm_ * anchor_radius_mm_;
+  for (size_t r = 0; r < regions_.size(); ++r) {
+    const double d2 = (regions_[r].anchor_in_template - point_in_object).squaredNorm();
+    if (d2 <= best_squared) {
+      best_squared = d2;
+      region = static_cast<int>(r);
+    }
+  }
+  return region;
+}
+
+void LocalColorModel::LearnRegion(int region, const Eigen::Vector2d& centre,
+                                  const std::vector<int>& foreground,
+                                  const std::vector<int>& background) {
+  Region& learned = regions_[region];
+  double background_rate = options_.learning_rate_background;
+  if (options_.local_background_memory == LocalBackgroundMemory::kImage) {
+    const double overlap =
+        DiscOverlapFraction((centre - learned.last_centre).norm(), options_.local_region_radius_px);
+    background_rate = 1.0 - (1.0 - background_rate) * overlap;
+  }
+  learned.histograms.Update(foreground, background, options_.learning_rate_foreground,
+                            background_rate);
+  learned.last_centre = centre;
 }
 
 void LocalColorModel::BuildCoverGrid() {
@@ -462,6 +638,12 @@ ViewColorModels::ViewColorModels(const ColorModelOptions& options, double object
 void ViewColorModels::Update(const cv::Mat3b& image, const Silhouette& silhouette) {
   if (own_coarse_ != nullptr) own_coarse_->Update(image, silhouette);
   if (refine_ != nullptr) refine_->Update(image, silhouette);
+}
+
+void ViewColorModels::UpdateAlongContour(const cv::Mat3b& image,
+                                         const std::vector<ProjectedContourPoint>& contour) {
+  if (own_coarse_ != nullptr) own_coarse_->UpdateAlongContour(image, contour);
+  if (refine_ != nullptr) refine_->UpdateAlongContour(image, contour);
 }
 
 bool ViewColorModels::UsesContour() const {

@@ -19,6 +19,10 @@ Status MultiViewTrackerOptions::Validate() const {
   if (!frame_status.ok()) violations.push_back(frame_status.message());
   const Status color_status = color.Validate();
   if (!color_status.ok()) violations.push_back("color: " + color_status.message());
+  if (color_samples == ColorSampleSource::kViewpointModel && !frame.lines_from_viewpoint_model) {
+    violations.push_back(
+        "color_samples = viewpoint_model, needs frame.lines_from_viewpoint_model = true");
+  }
   if (!(velocity_prediction >= 0.0 && velocity_prediction <= 1.0)) {
     violations.push_back(
         fmt::format("velocity_prediction = {}, must be in [0, 1]", velocity_prediction));
@@ -129,6 +133,12 @@ void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
     if (fresh) color_models_[v] = ViewColorModels(options_.color, caster_.mesh().diameter());
     const Eigen::Isometry3d cam_from_template =
         views_[v].cam_from_rig * rig_from_objcentre * objcentre_from_template;
+    if (options_.color_samples == ColorSampleSource::kViewpointModel) {
+      color_models_[v].UpdateAlongContour(
+          images[v], viewpoint_model_->Project(viewpoint_model_->Nearest(cam_from_template),
+                                               views_[v].camera, cam_from_template));
+      return;
+    }
     const Silhouette silhouette =
         color_models_[v].UsesContour()
             ? RenderSilhouetteContour(caster_, views_[v].camera, cam_from_template,

@@ -139,11 +139,14 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   // The configs as they are, then with the sparse region energy, rendered or from the sparse
-  // viewpoint model (sparse_viewpoint_model.h).
+  // viewpoint model (sparse_viewpoint_model.h), the colour models learned from the rendered
+  // silhouette or along the model's contour.
   const std::vector<std::pair<std::string, std::vector<std::string>>> variants = {
       {"", {}},
       {"/sparse", {"cost.energy=sparse"}},
-      {"/sparse_viewpoints", {"cost.energy=sparse", "lines.viewpoint_model=true"}}};
+      {"/sparse_viewpoints", {"cost.energy=sparse", "lines.viewpoint_model=true"}},
+      {"/sparse_viewpoints_colors",
+       {"cost.energy=sparse", "lines.viewpoint_model=true", "color.samples=viewpoint_model"}}};
   for (const std::string config : {"track.yaml", "annotate.yaml"}) {
     for (const auto& [suffix, overrides] : variants) {
       benchmark::RegisterBenchmark(

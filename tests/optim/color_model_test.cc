@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <string>
 #include <vector>
@@ -106,6 +107,15 @@ class ColorModelSceneTest : public test::SpoolImageTest {
     *outside = mean(model.ForegroundPosteriors(image_, outside_pixels));
   }
 
+  // P_f above 0.95 on average well inside, below 0.05 outside (MeanPosteriors).
+  void ExpectDiscriminates(const ColorModel& model) const {
+    ASSERT_TRUE(model.initialized());
+    double inside = 0.0, outside = 0.0;
+    MeanPosteriors(model, &inside, &outside);
+    EXPECT_GT(inside, 0.95);
+    EXPECT_LT(outside, 0.05);
+  }
+
   Silhouette silhouette_;
 };
 
@@ -113,11 +123,7 @@ TEST_F(ColorModelSceneTest, GlobalPosteriorsDiscriminateObjectAndBackground) {
   GlobalColorModel model{ColorModelOptions()};
   EXPECT_FALSE(model.initialized());
   model.Update(image_, silhouette_);
-  ASSERT_TRUE(model.initialized());
-  double inside = 0.0, outside = 0.0;
-  MeanPosteriors(model, &inside, &outside);
-  EXPECT_GT(inside, 0.95);
-  EXPECT_LT(outside, 0.05);
+  ExpectDiscriminates(model);
 }
 
 TEST_F(ColorModelSceneTest, GlobalModelIgnoresAnEmptySilhouette) {
@@ -144,10 +150,7 @@ TEST_F(ColorModelSceneTest, LocalPosteriorsDiscriminateAndRegionsPersist) {
   for (const auto& region : local->active_regions()) {
     EXPECT_TRUE(camera_.InImage(region.centre));
   }
-  double inside = 0.0, outside = 0.0;
-  MeanPosteriors(*model, &inside, &outside);
-  EXPECT_GT(inside, 0.95);
-  EXPECT_LT(outside, 0.05);
+  ExpectDiscriminates(*model);
 
   // The same pose again finds the same regions (anchored to model points); a small motion
   // mostly reuses them (temporal consistency).
@@ -200,6 +203,192 @@ TEST_F(ColorModelSceneTest, LocalPosteriorsAverageTheRegionsCoveringEachPixel) {
     EXPECT_GT(covered, 100);
     EXPECT_LT(covered, static_cast<int>(pixels.size()));
   }
+}
+
+// The samples along a contour line: from ⌊margin⌋ + 1 px on, one per pixel step, the inside up
+// to its extent less the margin, the outside up to the band (its extent is unbounded), in order,
+// each side stopping at the image's border; bins and sides in the codes.
+TEST(SampleContourLinesTest, SamplesEachSideWithinItsExtentTheBandAndTheImage) {
+  cv::Mat3b image(48, 64);
+  cv::RNG rng(3);
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  ColorModelOptions options;
+  options.sample_margin_px = 2.0;
+  options.background_band_px = 6;
+  const ColorHistograms binner(options.bins_per_channel);
+  ProjectedContourPoint point;
+  point.pixel = Eigen::Vector2d(30.3, 20.6);
+  point.normal = Eigen::Vector2d(0.6, 0.8);
+  point.inside_px = 7.5;
+  point.outside_px = std::numeric_limits<double>::infinity();
+  ProjectedContourPoint at_border = point;  // its outside leaves the image after 2 steps
+  at_border.pixel = Eigen::Vector2d(58.0, 20.0);
+  at_border.normal = Eigen::Vector2d(1.0, 0.0);
+  at_border.inside_px = 3.2;  // 3.2 − 2 < 3: no inside sample
+  const internal::ContourLineSamples samples =
+      internal::SampleContourLines(image, {point, at_border}, options, binner);
+  std::vector<int> expected_codes;
+  auto expect = [&](const Eigen::Vector2d& at, bool inside) {
+    const cv::Vec3b color =
+        image(static_cast<int>(std::lround(at.y())), static_cast<int>(std::lround(at.x())));
+    expected_codes.push_back((binner.Bin(color) << 1) | static_cast<int>(inside));
+  };
+  for (int t = 3; t <= 5; ++t) expect(point.pixel - t * point.normal, true);
+  for (int t = 3; t <= 6; ++t) expect(point.pixel + t * point.normal, false);
+  for (int t = 3; t <= 5; ++t) expect(at_border.pixel + t * at_border.normal, false);
+  EXPECT_EQ(samples.codes, expected_codes);
+  EXPECT_EQ(samples.first_t, 3);
+  EXPECT_EQ(samples.line_begin, (std::vector<int>{0, 7, 10}));
+  EXPECT_EQ(samples.line_outside, (std::vector<int>{3, 7}));
+  EXPECT_EQ(samples.line_normals[0], point.normal);
+  ASSERT_EQ(samples.line_pixels.size(), 2u);
+  EXPECT_EQ(samples.line_pixels[1], at_border.pixel);
+}
+
+// Between neighbours on one contour the lines are filled in 0.5 px apart, each with the extents
+// of the nearer neighbour; a jump to another contour (more than twice the median distance of
+// neighbours) is not filled.
+TEST(SampleContourLinesTest, FillsTheLinesBetweenNeighboursOfOneContour) {
+  cv::Mat3b image(48, 64, cv::Vec3b(10, 20, 30));
+  ColorModelOptions options;
+  options.sample_margin_px = 2.0;
+  options.background_band_px = 6;
+  std::vector<ProjectedContourPoint> contour;
+  for (const auto& [x, inside] : std::vector<std::pair<double, double>>{
+           {10.0, 4.0}, {12.0, 10.0}, {14.0, 10.0}, {40.0, 10.0}}) {
+    ProjectedContourPoint point;
+    point.pixel = Eigen::Vector2d(x, 20.0);
+    point.normal = Eigen::Vector2d(0.0, -1.0);  // outward is up, the inside below
+    point.inside_px = inside;
+    point.outside_px = std::numeric_limits<double>::infinity();
+    contour.push_back(point);
+  }
+  const internal::ContourLineSamples samples = internal::SampleContourLines(
+      image, contour, options, ColorHistograms(options.bins_per_channel));
+  // Lines at x = 10, 10.5, ..., 14 and 40. Inside (t = 3..6 px) on all but x = 10 and 10.5,
+  // whose nearer neighbour reaches only 4 px inside (4 − margin < 3); outside on every line.
+  ASSERT_EQ(samples.line_pixels.size(), 10u);
+  ASSERT_EQ(samples.line_begin.size(), 11u);
+  for (size_t line = 0; line < 10; ++line) {
+    const double x = line < 9 ? 10.0 + 0.5 * static_cast<double>(line) : 40.0;
+    EXPECT_EQ(samples.line_pixels[line], Eigen::Vector2d(x, 20.0)) << line;
+    int inside = 0, outside = 0;
+    for (int s = samples.line_begin[line]; s < samples.line_begin[line + 1]; ++s) {
+      (samples.codes[s] & 1 ? inside : outside) += 1;
+      EXPECT_EQ((samples.codes[s] & 1) != 0, s < samples.line_outside[line]);
+    }
+    EXPECT_EQ(inside, line < 2 ? 0 : 4) << line;
+    EXPECT_EQ(outside, 4) << line;
+  }
+}
+
+// The scene's exact contour as a viewpoint model would give it: every third point, with the
+// extents over which the mask keeps its value along the normal (0.25 px steps).
+std::vector<ProjectedContourPoint> ContourLinesOf(const Silhouette& silhouette) {
+  auto extent = [&](const Eigen::Vector2d& from, const Eigen::Vector2d& direction, bool inside) {
+    for (double t = 0.25; t < 300.0; t += 0.25) {
+      const Eigen::Vector2d at = from + t * direction;
+      const int x = static_cast<int>(std::lround(at.x())),
+                y = static_cast<int>(std::lround(at.y()));
+      if (x < 0 || y < 0 || x >= silhouette.mask.cols || y >= silhouette.mask.rows) break;
+      if ((silhouette.mask(y, x) != 0) != inside) return t;
+    }
+    return std::numeric_limits<double>::infinity();
+  };
+  std::vector<ProjectedContourPoint> lines;
+  for (size_t i = 0; i < silhouette.contour.size(); i += 3) {
+    const ContourPoint& point = silhouette.contour[i];
+    ProjectedContourPoint line;
+    line.pixel = point.pixel;
+    line.normal = point.normal;
+    line.point_in_object = point.point_in_object;
+    line.inside_px = extent(point.pixel, -point.normal, true);
+    line.outside_px = extent(point.pixel, point.normal, false);
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+// Learned along the contour's lines instead of from the silhouette, both models tell the object
+// from the background as well; the local model's centres are at least the spacing apart, about
+// as many as along the silhouette's contour, and found again at the same pose.
+TEST_F(ColorModelSceneTest, ModelsLearnedAlongTheContourLinesDiscriminateLikeTheSilhouette) {
+  const std::vector<ProjectedContourPoint> lines = ContourLinesOf(silhouette_);
+  ASSERT_GT(lines.size(), 50u);
+  GlobalColorModel global{ColorModelOptions()};
+  global.UpdateAlongContour(image_, lines);
+  ExpectDiscriminates(global);
+
+  ColorModelOptions options;
+  options.kind = ColorModelKind::kLocal;
+  LocalColorModel local(options, mesh_->diameter());
+  local.UpdateAlongContour(image_, lines);
+  ExpectDiscriminates(local);
+  LocalColorModel from_silhouette(options, mesh_->diameter());
+  from_silhouette.Update(image_, silhouette_);
+  const auto& active = local.active_regions();
+  const double expected = static_cast<double>(from_silhouette.active_regions().size());
+  EXPECT_GT(static_cast<double>(active.size()), 0.7 * expected);
+  EXPECT_LT(static_cast<double>(active.size()), 1.3 * expected);
+  for (size_t a = 0; a < active.size(); ++a) {
+    EXPECT_TRUE(local.region_histograms(active[a].region).initialized()) << a;
+    for (size_t b = 0; b < a; ++b) {
+      EXPECT_GE((active[a].centre - active[b].centre).norm(), options.local_region_spacing_px);
+    }
+  }
+  const int regions = local.num_regions();
+  const size_t active_count = active.size();
+  local.UpdateAlongContour(image_, lines);
+  EXPECT_EQ(local.num_regions(), regions);
+  EXPECT_EQ(local.active_regions().size(), active_count);
+
+  // No contour: nothing learned, no active region.
+  local.UpdateAlongContour(image_, {});
+  EXPECT_TRUE(local.active_regions().empty());
+  GlobalColorModel unlearned{ColorModelOptions()};
+  unlearned.UpdateAlongContour(image_, {});
+  EXPECT_FALSE(unlearned.initialized());
+}
+
+// Along the contour a local region learns from the samples whose point (the line's point at
+// their distance, before rounding to a pixel) lies within its disc: the same histograms as a
+// brute-force test of every sample against every active disc, in the same order.
+TEST_F(ColorModelSceneTest, RegionsAlongTheContourLearnTheSamplesInTheirDiscs) {
+  const std::vector<ProjectedContourPoint> lines = ContourLinesOf(silhouette_);
+  ColorModelOptions options;
+  options.kind = ColorModelKind::kLocal;
+  options.local_region_radius_px = 23.5;
+  LocalColorModel model(options, mesh_->diameter());
+  model.UpdateAlongContour(image_, lines);
+  const internal::ContourLineSamples samples =
+      internal::SampleContourLines(image_, lines, options, model.fallback().histograms());
+  ASSERT_GT(model.active_regions().size(), 10u);
+  const double radius_squared = options.local_region_radius_px * options.local_region_radius_px;
+  int partial_lines = 0;
+  for (const LocalColorModel::ActiveRegion& region : model.active_regions()) {
+    std::vector<int> foreground, background;
+    for (size_t line = 0; line < samples.line_pixels.size(); ++line) {
+      int taken = 0, total = 0;
+      for (int i = samples.line_begin[line]; i < samples.line_begin[line + 1]; ++i) {
+        const bool inside = i < samples.line_outside[line];
+        const int t =
+            samples.first_t + i - (inside ? samples.line_begin[line] : samples.line_outside[line]);
+        const Eigen::Vector2d at =
+            samples.line_pixels[line] + (inside ? -t : t) * samples.line_normals[line];
+        ++total;
+        if ((at - region.centre).squaredNorm() > radius_squared) continue;
+        ++taken;
+        (inside ? foreground : background).push_back(samples.codes[i] >> 1);
+      }
+      partial_lines += taken > 0 && taken < total;
+    }
+    ColorHistograms expected(options.bins_per_channel);
+    expected.Update(foreground, background, 1.0, 1.0);
+    const ColorHistograms& learned = model.region_histograms(region.region);
+    EXPECT_EQ(learned.foreground(), expected.foreground());
+    EXPECT_EQ(learned.background(), expected.background());
+  }
+  EXPECT_GT(partial_lines, 100);  // lines that cross a disc's rim are cut, not taken whole
 }
 
 // A global coarse model beside a local refinement is the local model's own fallback: the same

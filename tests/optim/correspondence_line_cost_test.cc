@@ -332,7 +332,8 @@ TEST_P(SparseEnergyConvergenceTest, RecoversAPerturbedFrame) {
 
 // The same acceptance test, binocular, with the region rounds' lines along a sparse viewpoint
 // model (a coarse one, 642 viewpoints about 8° apart, for the test's time; the edge stage
-// renders the exact contour).
+// renders the exact contour), the colour models learned from the rendered silhouette or along
+// the model's contour.
 TEST_F(SparseEnergyConvergenceTest, RecoversAPerturbedFrameFromAViewpointModel) {
   const test::BinocularScene scene;
   const std::vector<cv::Mat3b> images =
@@ -346,6 +347,8 @@ TEST_F(SparseEnergyConvergenceTest, RecoversAPerturbedFrameFromAViewpointModel) 
   options.frame.energy = RegionEnergy::kSparse;
   options.frame.lines_from_viewpoint_model = true;
   for (unsigned seed : {1u, 2u, 3u}) {
+    options.color_samples =
+        seed == 3u ? ColorSampleSource::kSilhouette : ColorSampleSource::kViewpointModel;
     StatusOr<std::unique_ptr<MultiViewTracker>> tracker = MultiViewTracker::Create(
         *caster_,
         {{scene.camera0, scene.cam0_from_rig, 1.0}, {scene.camera1, scene.cam1_from_rig, 1.0}},
@@ -354,10 +357,12 @@ TEST_F(SparseEnergyConvergenceTest, RecoversAPerturbedFrameFromAViewpointModel) 
     Eigen::Isometry3d pose = test::Perturb(scene.rig_from_objcentre, seed);
     const StatusOr<FrameSummary> summary = (*tracker)->Initialize(images, &pose);
     ASSERT_TRUE(summary.ok()) << summary.status().message();
-    std::printf("viewpoint model seed %u: %s, lines %d, error %.4f deg %.4f mm\n", seed,
-                FrameTerminationName(summary->termination), summary->views[0].lines,
-                test::RotationErrorDeg(pose, scene.rig_from_objcentre),
-                test::TranslationErrorMm(pose, scene.rig_from_objcentre));
+    std::printf(
+        "viewpoint model seed %u, colours from the %s: %s, lines %d, error %.4f deg "
+        "%.4f mm\n",
+        seed, seed == 3u ? "silhouette" : "model", FrameTerminationName(summary->termination),
+        summary->views[0].lines, test::RotationErrorDeg(pose, scene.rig_from_objcentre),
+        test::TranslationErrorMm(pose, scene.rig_from_objcentre));
     EXPECT_TRUE(summary->usable()) << summary->message;
     EXPECT_GT(summary->views[0].lines, 100);
     EXPECT_THAT(pose, test::PoseNear(scene.rig_from_objcentre, 0.1, 0.2)) << "seed " << seed;

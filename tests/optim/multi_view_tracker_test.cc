@@ -58,9 +58,12 @@ TEST(MultiViewTrackerOptionsTest, ValidateListsEveryViolation) {
   options.frame.rounds = 0;
   options.velocity_prediction = 1.5;
   options.color.bins_per_channel = 3;
+  options.color_samples = ColorSampleSource::kViewpointModel;  // without the model's lines
   test::ExpectErrorNaming(options.Validate(), StatusCode::kInvalidConfig,
                           {"bootstrap_passes = 0", "bootstrap_converged_mm = 0", "rounds = 0",
-                           "velocity_prediction = 1.5", "bins_per_channel = 3"});
+                           "velocity_prediction = 1.5", "bins_per_channel = 3",
+                           "color_samples = viewpoint_model, needs "
+                           "frame.lines_from_viewpoint_model = true"});
 }
 
 // The acceptance test of the joint solver: a binocular frame (90° apart) recovered from a

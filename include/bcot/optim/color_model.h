@@ -55,6 +55,7 @@
 
 #include "bcot/core/status.h"
 #include "bcot/optim/silhouette.h"
+#include "bcot/render/sparse_viewpoint_model.h"
 
 namespace bcot {
 
@@ -142,6 +143,13 @@ class ColorModel {
   // Learns from `image` (camera size) with the object at `silhouette` (mask and contour of
   // the same view). Sets the histograms on the first call, blends afterwards.
   virtual void Update(const cv::Mat3b& image, const Silhouette& silhouette) = 0;
+  // Learns from `image` without a silhouette: along the normals of `contour`, the object's
+  // contour at its pose with the extents of the silhouette on either side (a sparse viewpoint
+  // model's points projected into the view; see internal::SampleContourLines for which pixels).
+  // Sets or blends like Update. An empty contour changes nothing but a local model's active
+  // regions (none).
+  virtual void UpdateAlongContour(const cv::Mat3b& image,
+                                  const std::vector<ProjectedContourPoint>& contour) = 0;
   // P_f at each pixel (integer coordinates inside the image; CHECKed). P_b = 1 − P_f.
   virtual std::vector<double> ForegroundPosteriors(
       const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const = 0;
@@ -154,6 +162,35 @@ class ColorModel {
 
 namespace internal {
 class BoundaryDistances;  // color_model.cc
+
+// The samples of UpdateAlongContour, line by line: codes 2·bin + 1 (foreground) or 2·bin
+// (background). Line i's inside samples are codes [line_begin[i], line_outside[i]), at distances
+// t = first_t, first_t + 1, ... from its contour point along −normal; its outside samples are
+// [line_outside[i], line_begin[i + 1]), at the same distances along +normal.
+struct ContourLineSamples {
+  std::vector<Eigen::Vector2d> line_pixels;   // each line's contour point
+  std::vector<Eigen::Vector2d> line_normals;  // its outward normal, unit
+  std::vector<int> line_begin;                // one more than lines: the last is codes.size()
+  std::vector<int> line_outside;
+  int first_t = 1;
+  std::vector<int> codes;
+};
+
+// The lines are `contour`'s points, with lines interpolated between neighbours on the same
+// contour so that they are at most 0.5 px apart (sparser lines leave colours of a noisy
+// background unseen, where P_f is ½). Along each line's outward normal n,
+// one sample per pixel step at distances
+// t = ⌊sample_margin_px⌋ + 1, + 2, ... from the contour point p: the pixel nearest p − t·n is
+// foreground while t ≤ min(inside − sample_margin_px, background_band_px), the pixel nearest
+// p + t·n background while t ≤ min(outside − sample_margin_px, background_band_px), each side
+// stopping at the image's border. As on a silhouette, no pixel within the margin of the boundary
+// is sampled, nor one beyond the band; unlike it, the interior deeper than the band is not
+// sampled (M3T learns its histograms from its correspondence lines alike), and a pixel two lines
+// reach is sampled twice. `binner` gives the bins (every histogram of a model bins alike).
+ContourLineSamples SampleContourLines(const cv::Mat3b& image,
+                                      const std::vector<ProjectedContourPoint>& contour,
+                                      const ColorModelOptions& options,
+                                      const ColorHistograms& binner);
 }  // namespace internal
 
 class GlobalColorModel final : public ColorModel {
@@ -161,6 +198,8 @@ class GlobalColorModel final : public ColorModel {
   // `options` must be valid (CHECKed).
   explicit GlobalColorModel(const ColorModelOptions& options);
   void Update(const cv::Mat3b& image, const Silhouette& silhouette) override;
+  void UpdateAlongContour(const cv::Mat3b& image,
+                          const std::vector<ProjectedContourPoint>& contour) override;
   std::vector<double> ForegroundPosteriors(
       const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const override;
   bool initialized() const override { return histograms_.initialized(); }
@@ -173,6 +212,8 @@ class GlobalColorModel final : public ColorModel {
   // at least background_band_px + 1, and the box's samples (internal::SampleCodes; the local
   // model shares its own).
   void Update(const internal::BoundaryDistances& distances, const cv::Mat1i& codes);
+  // Update from the samples of SampleContourLines (binned like histograms_).
+  void Update(const internal::ContourLineSamples& samples);
 
   ColorModelOptions options_;
   ColorHistograms histograms_;
@@ -183,6 +224,11 @@ class LocalColorModel final : public ColorModel {
   // `options` must be valid (CHECKed); `object_diameter_mm` > 0 scales the anchor radius.
   LocalColorModel(const ColorModelOptions& options, double object_diameter_mm);
   void Update(const cv::Mat3b& image, const Silhouette& silhouette) override;
+  // The regions are centred on contour points at least local_region_spacing_px from every
+  // earlier centre (in the contour's order; along a smooth contour about the arc-length spacing
+  // of Update) and learn, as in Update, from the samples within their disc.
+  void UpdateAlongContour(const cv::Mat3b& image,
+                          const std::vector<ProjectedContourPoint>& contour) override;
   std::vector<double> ForegroundPosteriors(
       const cv::Mat3b& image, const std::vector<Eigen::Vector2i>& pixels) const override;
   bool initialized() const override { return fallback_.initialized(); }
@@ -222,6 +268,12 @@ class LocalColorModel final : public ColorModel {
   };
   // cover_ for active_ (after each Update).
   void BuildCoverGrid();
+  // The learned region whose anchor is nearest `point_in_object` within anchor_radius_mm_, or −1.
+  int NearestRegion(const Eigen::Vector3d& point_in_object) const;
+  // Blends region `region`'s histograms with its samples at `centre`, the background's rate
+  // following local_background_memory.
+  void LearnRegion(int region, const Eigen::Vector2d& centre, const std::vector<int>& foreground,
+                   const std::vector<int>& background);
 
   ColorModelOptions options_;
   double anchor_radius_mm_;
@@ -254,6 +306,8 @@ class ViewColorModels {
   ViewColorModels(const ColorModelOptions& options, double object_diameter_mm);
 
   void Update(const cv::Mat3b& image, const Silhouette& silhouette);
+  void UpdateAlongContour(const cv::Mat3b& image,
+                          const std::vector<ProjectedContourPoint>& contour);
   const ColorModel& coarse() const { return *coarse_; }
   // Null when the full-resolution rounds read the coarse model.
   const ColorModel* refine() const { return refine_.get(); }

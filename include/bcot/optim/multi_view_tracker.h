@@ -48,9 +48,20 @@
 
 namespace bcot {
 
+// Where the colour models learn their samples after a solve (LearnColors).
+enum class ColorSampleSource {
+  kSilhouette,      // the silhouette rendered at the pose (ColorModel::Update)
+  kViewpointModel,  // along the sparse viewpoint model's contour at the pose, without a render
+                    // (ColorModel::UpdateAlongContour); needs frame.lines_from_viewpoint_model
+};
+
 struct MultiViewTrackerOptions {
   FrameProblemOptions frame;
   ColorModelOptions color;
+  // kViewpointModel: with the region rounds' lines from the sparse viewpoint model, no frame
+  // renders the object unless the edge stage or the quality check does (issue 19; precision and
+  // time in docs/sparse_viewpoint_model.md).
+  ColorSampleSource color_samples = ColorSampleSource::kSilhouette;
   // Fraction of the last inter-frame motion (rotation about the object centre, displacement of
   // the centre, both in the rig frame) added to the last pose to start the next solve; in
   // [0, 1]. 0 = start at the last pose, 1 = constant velocity.
