@@ -192,6 +192,9 @@ cv::Mat1i SampleCodes(const cv::Mat3b& image, const cv::Mat1b& mask,
 
 namespace {
 
+// Most distance between neighbouring lines after DensifyContourLines (px).
+constexpr double kLineSpacingPx = 0.5;
+
 // `contour` with lines added between neighbours so that consecutive lines are at most
 // kLineSpacingPx apart: between points i and i + 1 whose distance g is larger than that and at
 // most twice the median distance of neighbours (so on the same contour: the points are evenly
@@ -201,9 +204,6 @@ namespace {
 // beside a concavity short and leaves its background unseen: on the spool scene of
 // color_model_test.cc the local model's mean P_f 4–30 px outside was 0.09 with it, 0.027 with
 // the nearer one's; lines 1 px apart: 0.048.)
-// Most distance between neighbouring lines after DensifyContourLines (px).
-constexpr double kLineSpacingPx = 0.5;
-
 std::vector<ProjectedContourPoint> DensifyContourLines(
     const std::vector<ProjectedContourPoint>& contour) {
   if (contour.size() < 3) return contour;
@@ -431,8 +431,7 @@ void LocalColorModel::UpdateAlongContour(const cv::Mat3b& image,
   const internal::ContourLineSamples samples =
       internal::SampleContourLines(image, contour, options_, fallback_.histograms());
   fallback_.Update(samples);
-  // The centres first (regions found or created as in Update), then each sample to the discs
-  // holding it through the cover grid of those centres.
+  // The centres first (regions found or created as in Update), then the samples of each disc.
   const double spacing_squared =
       options_.local_region_spacing_px * options_.local_region_spacing_px;
   std::vector<bool> is_active(regions_.size(), false);
