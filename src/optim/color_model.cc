@@ -409,9 +409,7 @@ void LocalColorModel::Update(const cv::Mat3b& image, const Silhouette& silhouett
       }
     }
     if (region < 0) {
-      region = static_cast<int>(regions_.size());
-      regions_.push_back(
-          {point.point_in_object, ColorHistograms(options_.bins_per_channel), point.pixel});
+      region = NewRegion(point.point_in_object, point.pixel);
       is_active.push_back(false);
     }
     LearnRegion(region, point.pixel, foreground_bins, background_bins);
@@ -444,9 +442,7 @@ void LocalColorModel::UpdateAlongContour(const cv::Mat3b& image,
     int region = NearestRegion(point.point_in_object);
     if (region >= 0 && is_active[region]) continue;
     if (region < 0) {
-      region = static_cast<int>(regions_.size());
-      regions_.push_back(
-          {point.point_in_object, ColorHistograms(options_.bins_per_channel), point.pixel});
+      region = NewRegion(point.point_in_object, point.pixel);
       is_active.push_back(false);
     }
     is_active[region] = true;
@@ -488,6 +484,12 @@ void LocalColorModel::UpdateAlongContour(const cv::Mat3b& image,
   for (size_t r = 0; r < active_.size(); ++r) {
     LearnRegion(active_[r].region, active_[r].centre, foreground_bins[r], background_bins[r]);
   }
+}
+
+int LocalColorModel::NewRegion(const Eigen::Vector3d& anchor_in_template,
+                               const Eigen::Vector2d& centre) {
+  regions_.push_back({anchor_in_template, ColorHistograms(options_.bins_per_channel), centre});
+  return static_cast<int>(regions_.size()) - 1;
 }
 
 int LocalColorModel::NearestRegion(const Eigen::Vector3d& point_in_object) const {

@@ -270,6 +270,8 @@ class LocalColorModel final : public ColorModel {
   void BuildCoverGrid();
   // The learned region whose anchor is nearest `point_in_object` within anchor_radius_mm_, or −1.
   int NearestRegion(const Eigen::Vector3d& point_in_object) const;
+  // Appends a region anchored at `anchor_in_template`, last seen at `centre`; its index.
+  int NewRegion(const Eigen::Vector3d& anchor_in_template, const Eigen::Vector2d& centre);
   // Blends region `region`'s histograms with its samples at `centre`, the background's rate
   // following local_background_memory.
   void LearnRegion(int region, const Eigen::Vector2d& centre, const std::vector<int>& foreground,
