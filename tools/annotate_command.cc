@@ -33,7 +33,6 @@ int RunAnnotate(const AnnotateFlags& flags) {
     PrintError("annotate", options.status().message());
     return options.status().ExitCode();
   }
-  options->tracker.viewpoint_cache_dir = ViewpointCacheDir();
   const auto start = std::chrono::steady_clock::now();
   ProgressLine line(!flags.quiet);
   AnnotateProgress progress;

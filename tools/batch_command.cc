@@ -48,7 +48,6 @@ int RunBatchCommand(const BatchFlags& flags) {
     PrintError("batch", annotate.status().message());
     return annotate.status().ExitCode();
   }
-  annotate->tracker.viewpoint_cache_dir = ViewpointCacheDir();
   BatchOptions options;
   options.annotate = *annotate;
   options.jobs = flags.jobs;

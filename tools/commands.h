@@ -39,11 +39,6 @@ void AddConfigFlags(CLI::App* command, ConfigFlags* flags, const OptionSchema<Op
 // The footer of a command's --help listing its options (OptionSchema::Help()).
 std::string OptionsFooter(const std::string& options_help);
 
-// Where the tools keep the sparse viewpoint models they build (MultiViewTrackerOptions::
-// viewpoint_cache_dir): $BCOT_CACHE_DIR, else $XDG_CACHE_HOME/bcot, else $HOME/.cache/bcot;
-// empty (no cache) when none of them is set.
-std::string ViewpointCacheDir();
-
 // Prints "bcot <command>: error: <message>" on stderr (one line).
 void PrintError(const std::string& command, const std::string& message);
 

@@ -27,17 +27,6 @@ std::string OptionsFooter(const std::string& options_help) {
          options_help;
 }
 
-std::string ViewpointCacheDir() {
-  const auto variable = [](const char* name) {
-    const char* value = std::getenv(name);
-    return value != nullptr ? std::string(value) : std::string();
-  };
-  if (const std::string dir = variable("BCOT_CACHE_DIR"); !dir.empty()) return dir;
-  if (const std::string dir = variable("XDG_CACHE_HOME"); !dir.empty()) return dir + "/bcot";
-  if (const std::string dir = variable("HOME"); !dir.empty()) return dir + "/.cache/bcot";
-  return "";
-}
-
 void PrintError(const std::string& command, const std::string& message) {
   std::fprintf(stderr, "bcot %s: error: %s\n", command.c_str(), message.c_str());
 }

@@ -60,8 +60,8 @@ StatusOr<std::unique_ptr<MultiViewTracker>> MultiViewTracker::Create(
   if (!options.frame.lines_from_viewpoint_model) {
     viewpoint_model = nullptr;
   } else if (viewpoint_model == nullptr) {
-    viewpoint_model = LoadOrBuildSparseViewpointModel(caster, SparseViewpointModelOptions(),
-                                                      options.viewpoint_cache_dir);
+    viewpoint_model = std::make_shared<const SparseViewpointModel>(
+        SparseViewpointModel::BuildOnDemand(caster, SparseViewpointModelOptions()));
   }
   return std::unique_ptr<MultiViewTracker>(new MultiViewTracker(
       caster, std::move(views), options, symmetry, std::move(viewpoint_model)));

@@ -2,19 +2,22 @@
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 
 #include "bcot/core/content_hash.h"
-#include "bcot/core/file_util.h"
 #include "bcot/core/violations.h"
 
 namespace bcot {
@@ -209,21 +212,69 @@ std::vector<Eigen::Vector3d> GeodesicSphere(int subdivisions) {
   return vertices;
 }
 
-SparseViewpointModel SparseViewpointModel::Build(const RayCaster& caster,
-                                                 const SparseViewpointModelOptions& options) {
+struct SparseViewpointModel::OnDemand {
+  OnDemand(const RayCaster& caster, const SparseViewpointModelOptions& options, size_t size)
+      : caster(caster), options(options), built_once(new std::once_flag[size]) {}
+
+  const RayCaster& caster;
+  const SparseViewpointModelOptions options;
+  double radius = 0.0;  // half the mesh's bounding-box diagonal
+  std::unique_ptr<std::once_flag[]> built_once;
+  std::atomic<int> num_built{0};
+};
+
+SparseViewpointModel::SparseViewpointModel() = default;
+SparseViewpointModel::SparseViewpointModel(SparseViewpointModel&&) noexcept = default;
+SparseViewpointModel& SparseViewpointModel::operator=(SparseViewpointModel&&) noexcept = default;
+SparseViewpointModel::~SparseViewpointModel() = default;
+
+SparseViewpointModel SparseViewpointModel::BuildOnDemand(
+    const RayCaster& caster, const SparseViewpointModelOptions& options) {
   const Status status = options.Validate();
   BCOT_CHECK(status.ok());
   const Mesh& mesh = caster.mesh();
   SparseViewpointModel model;
   model.key_ = CacheKey(mesh, options);
   model.centre_ = mesh.bbox_center();
-  const double radius = 0.5 * (mesh.bbox_max() - mesh.bbox_min()).norm();
   const std::vector<Eigen::Vector3d> directions = GeodesicSphere(options.sphere_subdivisions);
   model.viewpoints_.resize(directions.size());
-  tbb::parallel_for(size_t{0}, directions.size(), [&](size_t i) {
-    model.viewpoints_[i] = BuildViewpoint(caster, options, model.centre_, radius, directions[i]);
-  });
+  for (size_t i = 0; i < directions.size(); ++i) model.viewpoints_[i].direction = directions[i];
+  model.on_demand_ = std::make_unique<OnDemand>(caster, options, directions.size());
+  model.on_demand_->radius = 0.5 * (mesh.bbox_max() - mesh.bbox_min()).norm();
   return model;
+}
+
+SparseViewpointModel SparseViewpointModel::Build(const RayCaster& caster,
+                                                 const SparseViewpointModelOptions& options) {
+  SparseViewpointModel model = BuildOnDemand(caster, options);
+  tbb::parallel_for(size_t{0}, model.viewpoints_.size(), [&](size_t i) { model.EnsureBuilt(i); });
+  model.on_demand_.reset();
+  return model;
+}
+
+void SparseViewpointModel::EnsureBuilt(size_t i) const {
+  if (on_demand_ == nullptr) return;
+  std::call_once(on_demand_->built_once[i], [&] {
+    // Isolated: while this thread waits for the render's own parallel loop, it must not take
+    // another task of the caller's loop, which could ask for this viewpoint again and wait on
+    // its own flag.
+    tbb::this_task_arena::isolate([&] {
+      viewpoints_[i].points = BuildViewpoint(on_demand_->caster, on_demand_->options, centre_,
+                                             on_demand_->radius, viewpoints_[i].direction)
+                                  .points;
+    });
+    on_demand_->num_built.fetch_add(1, std::memory_order_relaxed);
+  });
+}
+
+const Viewpoint& SparseViewpointModel::viewpoint(int i) const {
+  BCOT_CHECK(i >= 0 && i < size());
+  EnsureBuilt(static_cast<size_t>(i));
+  return viewpoints_[static_cast<size_t>(i)];
+}
+
+int SparseViewpointModel::num_built() const {
+  return on_demand_ == nullptr ? size() : on_demand_->num_built.load(std::memory_order_relaxed);
 }
 
 std::string SparseViewpointModel::CacheKey(const Mesh& mesh,
@@ -241,6 +292,7 @@ std::string SparseViewpointModel::CacheKey(const Mesh& mesh,
 }
 
 std::string SparseViewpointModel::Serialize() const {
+  tbb::parallel_for(size_t{0}, viewpoints_.size(), [&](size_t i) { EnsureBuilt(i); });
   std::string out(kMagic, sizeof(kMagic));
   Put(&out, kFormatVersion);
   Put(&out, kByteOrderMark);
@@ -366,43 +418,6 @@ std::vector<ProjectedContourPoint> SparseViewpointModel::Project(
     projected.push_back(out);
   }
   return projected;
-}
-
-std::shared_ptr<const SparseViewpointModel> LoadOrBuildSparseViewpointModel(
-    const RayCaster& caster, const SparseViewpointModelOptions& options,
-    const std::string& cache_dir, std::string* log) {
-  const auto build = [&] {
-    return std::make_shared<const SparseViewpointModel>(
-        SparseViewpointModel::Build(caster, options));
-  };
-  const auto note = [&](const std::string& line) {
-    if (log != nullptr) *log = line;
-  };
-  if (cache_dir.empty()) {
-    note("sparse viewpoint model built (no cache directory)");
-    return build();
-  }
-  const std::string key = SparseViewpointModel::CacheKey(caster.mesh(), options);
-  const std::string path = cache_dir + "/viewpoints-" + key + ".bin";
-  std::string why_built = "not cached yet";
-  StatusOr<std::string> bytes = ReadFileContents(path);
-  if (bytes.ok()) {
-    StatusOr<SparseViewpointModel> cached = SparseViewpointModel::Deserialize(*bytes, key, path);
-    if (cached.ok()) {
-      note("sparse viewpoint model read from " + path);
-      return std::make_shared<const SparseViewpointModel>(std::move(cached).value());
-    }
-    why_built = cached.status().message();
-  } else if (bytes.status().code() != StatusCode::kNotFound) {
-    why_built = path + ": " + bytes.status().message();
-  }
-  std::shared_ptr<const SparseViewpointModel> model = build();
-  const Status written = WriteFileAtomic(path, model->Serialize());
-  note(written.ok()
-           ? fmt::format("sparse viewpoint model built ({}) and written to {}", why_built, path)
-           : fmt::format("sparse viewpoint model built ({}), not cached: {}", why_built,
-                         written.message()));
-  return model;
 }
 
 }  // namespace bcot

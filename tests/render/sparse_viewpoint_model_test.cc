@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "bcot/render/mesh.h"
@@ -206,39 +207,51 @@ TEST(SparseViewpointModelTest, SerializeRoundTripAndBadFiles) {
                           StatusCode::kInvalidInput, {"m.bin", "1 bytes after"});
 }
 
-// The first call builds the model and writes it, the next reads it; a damaged file is rebuilt
-// and replaced; a cache that cannot be written leaves a built model and says why.
-TEST(LoadOrBuildSparseViewpointModelTest, ReadsWritesAndRebuildsTheCache) {
-  const Mesh box = test::MakeBox(Eigen::Vector3d(20.0, 12.0, 7.0));
-  const RayCaster caster(box);
-  SparseViewpointModelOptions options = SmallOptions();
-  options.sphere_subdivisions = 0;
-  const test::TempDir dir;
-  const std::string cache = dir.File("cache");
-  const std::string path =
-      cache + "/viewpoints-" + SparseViewpointModel::CacheKey(box, options) + ".bin";
-  std::string log;
-  const auto built = LoadOrBuildSparseViewpointModel(caster, options, cache, &log);
-  EXPECT_NE(log.find("built (not cached yet) and written to " + path), std::string::npos) << log;
-  const auto read = LoadOrBuildSparseViewpointModel(caster, options, cache, &log);
-  EXPECT_EQ(log, "sparse viewpoint model read from " + path);
-  EXPECT_EQ(read->Serialize(), built->Serialize());
+// A model built on demand has its directions at once and builds a viewpoint only when it is
+// used, once, whichever threads ask for it; each is the one Build() makes.
+TEST(SparseViewpointModelTest, OnDemandBuildsEachUsedViewpointOnceAsBuildDoes) {
+  const Mesh torus = test::MakeTorus(40.0, 12.0, 48, 24);
+  const RayCaster caster(torus);
+  const SparseViewpointModelOptions options = SmallOptions();
+  const SparseViewpointModel built = SparseViewpointModel::Build(caster, options);
+  EXPECT_EQ(built.num_built(), built.size());
 
-  test::WriteText(path, "damaged");
-  const auto rebuilt = LoadOrBuildSparseViewpointModel(caster, options, cache, &log);
-  EXPECT_NE(log.find("not a sparse viewpoint model"), std::string::npos) << log;
-  EXPECT_EQ(rebuilt->Serialize(), built->Serialize());
-  LoadOrBuildSparseViewpointModel(caster, options, cache, &log);
-  EXPECT_EQ(log, "sparse viewpoint model read from " + path);
+  const SparseViewpointModel lazy = SparseViewpointModel::BuildOnDemand(caster, options);
+  ASSERT_EQ(lazy.size(), built.size());
+  EXPECT_EQ(lazy.num_built(), 0);
+  EXPECT_EQ(lazy.key(), built.key());
+  const Eigen::Isometry3d cam_from_template =
+      LookAtCamFromObject(torus.bbox_center(), Eigen::Vector3d(0.3, -0.5, 0.8).normalized(), 300.0);
+  const int nearest = lazy.Nearest(cam_from_template);
+  EXPECT_EQ(nearest, built.Nearest(cam_from_template));
+  EXPECT_EQ(lazy.num_built(), 0);
 
-  // A file where the cache directory should be.
-  test::WriteText(dir.File("not_a_dir"), "x");
-  const auto uncached =
-      LoadOrBuildSparseViewpointModel(caster, options, dir.File("not_a_dir"), &log);
-  EXPECT_NE(log.find("not cached"), std::string::npos) << log;
-  EXPECT_EQ(uncached->Serialize(), built->Serialize());
-  LoadOrBuildSparseViewpointModel(caster, options, "", &log);
-  EXPECT_EQ(log, "sparse viewpoint model built (no cache directory)");
+  // Eight threads ask for the same three viewpoints at once.
+  const std::vector<int> used = {nearest, (nearest + 1) % lazy.size(), (nearest + 7) % lazy.size()};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 8; ++t) {
+    threads.emplace_back([&lazy, &used, t] {
+      for (size_t k = 0; k < used.size(); ++k) lazy.viewpoint(used[(k + t) % used.size()]);
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  EXPECT_EQ(lazy.num_built(), 3);
+  for (const int i : used) {
+    const Viewpoint& a = lazy.viewpoint(i);
+    const Viewpoint& b = built.viewpoint(i);
+    EXPECT_EQ(a.direction, b.direction);
+    ASSERT_EQ(a.points.size(), b.points.size()) << "viewpoint " << i;
+    ASSERT_FALSE(a.points.empty());
+    for (size_t k = 0; k < a.points.size(); ++k) {
+      EXPECT_EQ(a.points[k].point, b.points[k].point);
+      EXPECT_EQ(a.points[k].normal, b.points[k].normal);
+      EXPECT_EQ(a.points[k].inside_mm, b.points[k].inside_mm);
+      EXPECT_EQ(a.points[k].outside_mm, b.points[k].outside_mm);
+    }
+  }
+  // Serialize builds the rest: the same bytes as the model built at once.
+  EXPECT_EQ(lazy.Serialize(), built.Serialize());
+  EXPECT_EQ(lazy.num_built(), lazy.size());
 }
 
 }  // namespace

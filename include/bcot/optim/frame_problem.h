@@ -35,8 +35,8 @@
 //
 // Sparse viewpoint model. With options.lines_from_viewpoint_model (energy sparse only) the
 // region rounds do not ray-cast: each view's lines lie along the points of the model's nearest
-// viewpoint (SparseViewpointModel, built once per mesh), projected at the current pose. The edge
-// stage still renders the exact silhouette (docs/sparse_viewpoint_model.md).
+// viewpoint (SparseViewpointModel, each viewpoint built once), projected at the current pose.
+// The edge stage still renders the exact silhouette (docs/sparse_viewpoint_model.md).
 //
 // Monocular tracking is the same code with one view. Failure is data: the Summary says what
 // happened; the pose is only written when the solve produced a finite energy.

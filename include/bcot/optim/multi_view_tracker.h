@@ -83,11 +83,6 @@ struct MultiViewTrackerOptions {
   // frame.rounds 2 (a monocular pinion of the Cycles scenes is lost from frame 0 with 2 bootstrap
   // rounds, docs/notes/issue19_speed.md).
   int bootstrap_rounds = 0;
-  // Directory of the sparse viewpoint models cached on disk for frame.lines_from_viewpoint_model
-  // (LoadOrBuildSparseViewpointModel); empty = built for every tracker. Where models are kept,
-  // not how frames are solved: not an option of the YAML config (the bcot tools set it,
-  // docs/sparse_viewpoint_model.md).
-  std::string viewpoint_cache_dir;
   // Lists every violation (field, value, rule) in one kInvalidConfig status.
   Status Validate() const;
 };
@@ -106,8 +101,9 @@ class MultiViewTracker {
   // (render/symmetry_detection.h), if any; no solve then turns the object about its axis
   // (FrameProblem). `viewpoint_model`: the caster's mesh's sparse viewpoint model for
   // frame.lines_from_viewpoint_model; when that option is on and none is given, the tracker
-  // reads or builds one (options.viewpoint_cache_dir). Errors: invalid options or
-  // cameras, no view, a negative or non-finite weight (kInvalidConfig).
+  // makes one that builds its viewpoints on demand (SparseViewpointModel::BuildOnDemand).
+  // Errors: invalid options or cameras, no view, a negative or non-finite weight
+  // (kInvalidConfig).
   static StatusOr<std::unique_ptr<MultiViewTracker>> Create(
       const RayCaster& caster, std::vector<TrackedView> views,
       const MultiViewTrackerOptions& options,

@@ -2,9 +2,10 @@
 // and M3T): for viewpoints spread evenly over a sphere around the object, a fixed number of
 // points of the silhouette contour seen from there, each with its outward normal and how far
 // the silhouette continues on either side of it. The region rounds of the sparse energy
-// (correspondence_lines.h) need only these per line, so a model built once per mesh replaces
-// the silhouette render of every round by a table lookup and a projection of some hundred
-// points (docs/sparse_viewpoint_model.md; measured with scripts/bench_render.sh).
+// (correspondence_lines.h) need only these per line, so a model whose viewpoints are each
+// rendered once replaces the silhouette render of every round by a table lookup and a
+// projection of some hundred points (docs/sparse_viewpoint_model.md; measured with
+// scripts/bench_render.sh).
 //
 // Build, per viewpoint direction v (unit, O_t, from the bounding-box centre c towards the
 // camera): a virtual pinhole camera at c + d·v (d = distance_factor·r, r = half the bounding-box
@@ -36,13 +37,16 @@
 // where the anchor matters to a fraction of a pixel: the edge stage, the colour models, the
 // quality check.
 //
-// Cache. Build takes 20–40 s of CPU (10,242 renders); Serialize()/Deserialize() write and read
-// the model as a binary file (host byte order: a cache of this machine, not an exchange format)
-// whose header holds CacheKey(mesh, options), so a file built for another mesh or other options
-// is never used; LoadOrBuildSparseViewpointModel keeps such files in a directory.
+// Build. Build() renders all 10,242 viewpoints (20–40 s of CPU); BuildOnDemand() renders each
+// when it is first used, and a sequence uses a few hundred at most (30 binocular frames of the
+// bunny as scripts/bench_throughput.sh synthesizes them: 69), so the tracker needs neither a
+// build step nor a cache. Serialize()/Deserialize() write and read a model as a binary file
+// (host byte order, not an exchange format) whose header holds CacheKey(mesh, options), so a
+// file made for another mesh or other options is never used.
 //
 // Frames and units: O_t (the mesh's template frame), mm; pixels as ray_caster.h.
-// Thread safety: a built model is immutable; its const methods may run concurrently.
+// Thread safety: a built model is immutable, one built on demand only fills its viewpoints (each
+// once, under its own flag); the const methods of either may run concurrently.
 #pragma once
 
 #include <Eigen/Core>
@@ -109,6 +113,18 @@ class SparseViewpointModel {
   // rendered in parallel on the calling TBB arena.
   static SparseViewpointModel Build(const RayCaster& caster,
                                     const SparseViewpointModelOptions& options);
+  // The same model with each viewpoint's contour built when it is first used (viewpoint(),
+  // Project(), Serialize()), once, from any thread; the directions and Nearest() are ready at
+  // once. A sequence visits a few hundred of the 10,242 viewpoints, so this costs well under a
+  // second instead of Build()'s 20–40 s; every viewpoint is the one Build() makes. `caster` must
+  // outlive the model.
+  static SparseViewpointModel BuildOnDemand(const RayCaster& caster,
+                                            const SparseViewpointModelOptions& options);
+
+  SparseViewpointModel();
+  SparseViewpointModel(SparseViewpointModel&&) noexcept;
+  SparseViewpointModel& operator=(SparseViewpointModel&&) noexcept;
+  ~SparseViewpointModel();
 
   // A hash (16 hex digits) of the mesh's vertices and triangles, the options and the format
   // version: what a cached model must have been built from.
@@ -125,7 +141,10 @@ class SparseViewpointModel {
 
   const std::string& key() const { return key_; }
   int size() const { return static_cast<int>(viewpoints_.size()); }
-  const Viewpoint& viewpoint(int i) const { return viewpoints_.at(static_cast<size_t>(i)); }
+  // Viewpoint i, its contour built first when the model builds on demand.
+  const Viewpoint& viewpoint(int i) const;
+  // How many viewpoints have their contour: size() unless built on demand.
+  int num_built() const;
   // The bounding-box centre c the directions are taken from (O_t, mm).
   const Eigen::Vector3d& centre() const { return centre_; }
 
@@ -139,18 +158,17 @@ class SparseViewpointModel {
                                              const Eigen::Isometry3d& cam_from_template) const;
 
  private:
+  struct OnDemand;  // what builds the viewpoints not built yet (BuildOnDemand)
+
+  // Builds viewpoint i's contour unless it has been built.
+  void EnsureBuilt(size_t i) const;
+
   std::string key_;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
-  std::vector<Viewpoint> viewpoints_;
+  // The directions are set when the model is made and never change (Nearest() reads them from
+  // any thread); a model built on demand fills each viewpoint's points once, in EnsureBuilt.
+  mutable std::vector<Viewpoint> viewpoints_;
+  std::unique_ptr<OnDemand> on_demand_;  // null when every viewpoint is built
 };
-
-// The model of caster.mesh() for `options` (valid, CHECKed) read from `cache_dir`'s file
-// "viewpoints-<CacheKey>.bin", or built and written there (atomically) when that file is missing
-// or unusable. `cache_dir` empty: built, nothing read or written. A cache that cannot be read or
-// written is not an error (the model is built); `log`, when not null, receives one line saying
-// what was done and why.
-std::shared_ptr<const SparseViewpointModel> LoadOrBuildSparseViewpointModel(
-    const RayCaster& caster, const SparseViewpointModelOptions& options,
-    const std::string& cache_dir, std::string* log = nullptr);
 
 }  // namespace bcot
