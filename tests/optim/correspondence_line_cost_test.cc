@@ -341,8 +341,9 @@ TEST_F(SparseEnergyConvergenceTest, RecoversAPerturbedFrameFromAViewpointModel) 
   SparseViewpointModelOptions model_options;
   model_options.sphere_subdivisions = 3;
   model_options.image_size_px = 300;
+  // Built on demand, as the tracker makes it: the two views ask for viewpoints concurrently.
   const auto model = std::make_shared<const SparseViewpointModel>(
-      SparseViewpointModel::Build(*caster_, model_options));
+      SparseViewpointModel::BuildOnDemand(*caster_, model_options));
   MultiViewTrackerOptions options;
   options.frame.energy = RegionEnergy::kSparse;
   options.frame.lines_from_viewpoint_model = true;
@@ -367,6 +368,9 @@ TEST_F(SparseEnergyConvergenceTest, RecoversAPerturbedFrameFromAViewpointModel) 
     EXPECT_GT(summary->views[0].lines, 100);
     EXPECT_THAT(pose, test::PoseNear(scene.rig_from_objcentre, 0.1, 0.2)) << "seed " << seed;
   }
+  // Only the viewpoints near the two cameras' directions were rendered.
+  EXPECT_GT(model->num_built(), 0);
+  EXPECT_LT(model->num_built(), model->size() / 2);
 }
 
 INSTANTIATE_TEST_SUITE_P(Energies, SparseEnergyConvergenceTest,
