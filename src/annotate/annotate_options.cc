@@ -177,8 +177,8 @@ void DeclareLines(OptionSchema<AnnotateOptions>* s) {
        "lines.viewpoint_model",
        [](auto& o) -> auto& { return o.tracker.frame.lines_from_viewpoint_model; }, "",
        "region rounds' lines along a sparse viewpoint model (each viewpoint rendered once, when "
-       "first used), without a render "
-       "per round (cost.energy sparse only; docs/sparse_viewpoint_model.md)")
+       "first used), without a render per round (cost.energy sparse only; "
+       "docs/sparse_viewpoint_model.md)")
       .Check([](const AnnotateOptions& o) {
         return o.tracker.frame.lines_from_viewpoint_model &&
                        o.tracker.frame.energy != RegionEnergy::kSparse

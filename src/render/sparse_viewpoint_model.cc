@@ -214,12 +214,15 @@ std::vector<Eigen::Vector3d> GeodesicSphere(int subdivisions) {
 
 struct SparseViewpointModel::OnDemand {
   OnDemand(const RayCaster& caster, const SparseViewpointModelOptions& options, size_t size)
-      : caster(caster), options(options), built_once(new std::once_flag[size]) {}
+      : caster(caster),
+        options(options),
+        radius(0.5 * (caster.mesh().bbox_max() - caster.mesh().bbox_min()).norm()),
+        built_once(new std::once_flag[size]) {}
 
   const RayCaster& caster;
   const SparseViewpointModelOptions options;
-  double radius = 0.0;  // half the mesh's bounding-box diagonal
-  std::unique_ptr<std::once_flag[]> built_once;
+  const double radius;  // half the mesh's bounding-box diagonal
+  const std::unique_ptr<std::once_flag[]> built_once;
   std::atomic<int> num_built{0};
 };
 
@@ -240,14 +243,13 @@ SparseViewpointModel SparseViewpointModel::BuildOnDemand(
   model.viewpoints_.resize(directions.size());
   for (size_t i = 0; i < directions.size(); ++i) model.viewpoints_[i].direction = directions[i];
   model.on_demand_ = std::make_unique<OnDemand>(caster, options, directions.size());
-  model.on_demand_->radius = 0.5 * (mesh.bbox_max() - mesh.bbox_min()).norm();
   return model;
 }
 
 SparseViewpointModel SparseViewpointModel::Build(const RayCaster& caster,
                                                  const SparseViewpointModelOptions& options) {
   SparseViewpointModel model = BuildOnDemand(caster, options);
-  tbb::parallel_for(size_t{0}, model.viewpoints_.size(), [&](size_t i) { model.EnsureBuilt(i); });
+  model.EnsureAllBuilt();
   model.on_demand_.reset();
   return model;
 }
@@ -265,6 +267,11 @@ void SparseViewpointModel::EnsureBuilt(size_t i) const {
     });
     on_demand_->num_built.fetch_add(1, std::memory_order_relaxed);
   });
+}
+
+void SparseViewpointModel::EnsureAllBuilt() const {
+  if (on_demand_ == nullptr) return;
+  tbb::parallel_for(size_t{0}, viewpoints_.size(), [&](size_t i) { EnsureBuilt(i); });
 }
 
 const Viewpoint& SparseViewpointModel::viewpoint(int i) const {
@@ -292,7 +299,7 @@ std::string SparseViewpointModel::CacheKey(const Mesh& mesh,
 }
 
 std::string SparseViewpointModel::Serialize() const {
-  tbb::parallel_for(size_t{0}, viewpoints_.size(), [&](size_t i) { EnsureBuilt(i); });
+  EnsureAllBuilt();
   std::string out(kMagic, sizeof(kMagic));
   Put(&out, kFormatVersion);
   Put(&out, kByteOrderMark);

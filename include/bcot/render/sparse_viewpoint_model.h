@@ -162,6 +162,8 @@ class SparseViewpointModel {
 
   // Builds viewpoint i's contour unless it has been built.
   void EnsureBuilt(size_t i) const;
+  // EnsureBuilt of every viewpoint, in parallel on the calling TBB arena.
+  void EnsureAllBuilt() const;
 
   std::string key_;
   Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
