@@ -4,10 +4,10 @@
 // 0.3 + contrast, outside 0.3, blur σ `--blur` px, edge at a uniformly random sub-pixel phase),
 // each pixel the mean over its width, plus Gaussian noise whose standard deviation blends from
 // σ_in (inside) to σ_out (outside) across the edge. The line is sampled as the edge stage samples
-// an image (every 0.25 px over ±4 px, linear interpolation between pixels) and fitted by
-// FitEdgeProfile with the annotation config's defaults. Printed per (contrast, σ_out, σ_in): the
-// fraction of lines found and the signed error of the found centres (mean, median, 10 and 90 %
-// quantiles; negative = inside, towards the σ_in side).
+// an image (every edge.step_px over ±edge.window_px, linear interpolation between pixels) and
+// fitted by FitEdgeProfile with the annotation config's defaults. Printed per (contrast, σ_out,
+// σ_in): the fraction of lines found and the signed error of the found centres (mean, median, 10
+// and 90 % quantiles; negative = inside, towards the σ_in side).
 //
 // Usage: build/tests/bench/edge_noise_bias [--contrast 0.3,0.1] [--sigma-out 0.01,0.03]
 //            [--sigma-in 0.01,0.02,0.03,0.05,0.08] [--blur 0.7] [--trials 20000] [--seed 1]
@@ -27,8 +27,25 @@ double NormalCdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
 
 constexpr int kHalfPixels = 8;   // pixels −8 … 8 around the line's centre
 constexpr int kSubsamples = 16;  // integration points per pixel
-constexpr double kStepPx = 0.25;
-constexpr int kHalfSamples = 16;  // samples −4 … 4 px
+
+// Where the edge stage's samples fall between the pixels (offsets k·step_px within window_px):
+// sample k interpolates pixels first[k] and first[k] + 1 with weight `fraction[k]` on the second.
+struct SampleLayout {
+  double first_offset_px = 0.0;
+  std::vector<int> first;
+  std::vector<double> fraction;
+
+  explicit SampleLayout(const bcot::EdgeLineOptions& options) {
+    const int half = static_cast<int>(std::floor(options.window_px / options.step_px + 1e-9));
+    first_offset_px = -half * options.step_px;
+    for (int k = -half; k <= half; ++k) {
+      const double s = k * options.step_px + kHalfPixels;
+      const int i0 = std::min(2 * kHalfPixels - 1, static_cast<int>(std::floor(s)));
+      first.push_back(i0);
+      fraction.push_back(s - i0);
+    }
+  }
+};
 
 struct Summary {
   double found_fraction = 0.0;
@@ -38,10 +55,11 @@ struct Summary {
 Summary Simulate(double contrast, double sigma_out, double sigma_in, double blur_px, int trials,
                  std::mt19937* rng) {
   const bcot::EdgeLineOptions options;
+  const SampleLayout layout(options);
   std::uniform_real_distribution<double> phase(-0.5, 0.5);
   std::normal_distribution<double> unit_normal(0.0, 1.0);
   std::vector<double> errors;
-  std::vector<double> pixels(2 * kHalfPixels + 1), values(2 * kHalfSamples + 1);
+  std::vector<double> pixels(2 * kHalfPixels + 1), values(layout.first.size());
   for (int trial = 0; trial < trials; ++trial) {
     const double edge = phase(*rng);
     for (int i = 0; i < static_cast<int>(pixels.size()); ++i) {
@@ -58,14 +76,13 @@ Summary Simulate(double contrast, double sigma_out, double sigma_in, double blur
           std::sqrt(inside * sigma_in * sigma_in + (1.0 - inside) * sigma_out * sigma_out);
       pixels[i] = mean + sd * unit_normal(*rng);
     }
-    for (int k = -kHalfSamples; k <= kHalfSamples; ++k) {
-      const double s = k * kStepPx + kHalfPixels;
-      const int i0 = std::min(2 * kHalfPixels - 1, static_cast<int>(std::floor(s)));
-      const double f = s - i0;
-      values[k + kHalfSamples] = (1.0 - f) * pixels[i0] + f * pixels[i0 + 1];
+    for (size_t k = 0; k < values.size(); ++k) {
+      const int i0 = layout.first[k];
+      const double f = layout.fraction[k];
+      values[k] = (1.0 - f) * pixels[i0] + f * pixels[i0 + 1];
     }
     bcot::EdgeFit fit;
-    if (bcot::FitEdgeProfile(values, -kHalfSamples * kStepPx, options, &fit)) {
+    if (bcot::FitEdgeProfile(values, layout.first_offset_px, options, &fit)) {
       errors.push_back(fit.mean_px - edge);
     }
   }
