@@ -22,7 +22,10 @@
 # plus the bias per 10-frame block for the annotate setting. Extra `bcot annotate` arguments:
 # BCOT_PBR_ANNOTATE_ARGS (e.g. "--set solver.rounds=3"); BCOT_PBR_REUSE_ANN=1 keeps finished
 # annotations (out/pbr/ann/<seq>/<setting>/DONE) instead of redoing them (only valid when
-# neither bcot nor the arguments changed). Needs scripts/setup.sh --with-blender.
+# neither bcot nor the arguments changed). BCOT_PBR_FRAME_STEP=N (> 1) measures every scene at
+# 1/N of its frame rate instead: every N-th frame, copied once into <sequence>-every<N>
+# (tests/bench/subsample_sequence.py; docs/notes/issue12_fast_motion.md).
+# Needs scripts/setup.sh --with-blender.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 specs=("$@")
@@ -41,6 +44,8 @@ results=$root/results.tsv.partial
 checks=$root/gt_checks.txt
 : >"$checks"
 read -r -a extra <<<"${BCOT_PBR_ANNOTATE_ARGS:-}"
+step=${BCOT_PBR_FRAME_STEP:-1}
+[[ "$step" =~ ^[1-9][0-9]*$ ]] || { echo "bench_pbr: BCOT_PBR_FRAME_STEP=$step: must be an integer >= 1" >&2; exit 2; }
 for spec in "${specs[@]}"; do
   if [ -d "$spec" ]; then
     [ -d "$spec/gt" ] || { echo "bench_pbr: $spec has no gt/ (not a rendered sequence)" >&2; exit 2; }
@@ -53,6 +58,14 @@ for spec in "${specs[@]}"; do
       echo "bench_pbr: rendering $seq" >&2
       scripts/pbr_synth.sh "$spec" "$seq" >&2
     fi
+  fi
+  if [ "$step" -gt 1 ]; then
+    if [ ! -d "$seq-every$step" ]; then
+      $py tests/bench/subsample_sequence.py "$seq" "$seq-every$step.partial" "$step" >&2
+      mv "$seq-every$step.partial" "$seq-every$step"
+    fi
+    seq=$seq-every$step
+    key=$key-every$step
   fi
   frames=$(ls "$seq/cam0" | wc -l)
   { echo "== $key ($(cat "$seq/pbr_timing.json"))"; build/tests/bench/pbr_gt_check "$seq"; } >>"$checks"

@@ -7,10 +7,10 @@ SRC is a sequence of the input contract with ground truth (`bcot synth` or scrip
 DST gets frames 0, STEP, 2·STEP, ... of SRC renumbered from 0: every camera's images, the
 timestamps, gt/rig_from_object.txt, gt/world_from_*.txt, gt/<camera>/pose.txt and
 gt/mask/<camera>/ when present; rig.yaml, object.yaml, the model and init_pose.txt (frame 0 is
-kept) are copied. The object then moves STEP times as far between frames, and its motion
-changes STEP² times as much, which is what a constant-velocity prediction misses
-(docs/notes/issue12_fast_motion.md). Annotate DST like SRC and compare with `pbr_errors DST ANN`.
-DST is replaced if it exists.
+kept) are copied, and pbr_timing.json when present. The object then moves STEP times as far
+between frames, and its motion changes STEP² times as much, which is what a constant-velocity
+prediction misses (docs/notes/issue12_fast_motion.md). Annotate DST like SRC and compare with
+`pbr_errors DST ANN`. DST is replaced if it exists.
 """
 import os
 import shutil
@@ -56,6 +56,9 @@ def main():
     os.makedirs(os.path.join(dst, "gt"))
     for name in ("rig.yaml", "object.yaml", "init_pose.txt"):
         shutil.copy(os.path.join(src, name), dst)
+    # The render's own record, which scripts/bench_pbr.sh prints with the scene's checks.
+    if os.path.isfile(os.path.join(src, "pbr_timing.json")):
+        shutil.copy(os.path.join(src, "pbr_timing.json"), dst)
     shutil.copytree(os.path.join(src, "model"), os.path.join(dst, "model"))
     with open(os.path.join(dst, "timestamps.csv"), "w") as out:
         out.write(header + "\n")
