@@ -27,8 +27,18 @@
 // scripts/pbr_synth.sh: Blender's anti-aliased object coverage, 16 bit), mapped to a grey object
 // on a grey background and read as linear: what the geometry, the pixel conventions and the fit
 // alone make of the offsets, with no light, material or noise.
+// --at ANN measures at an annotation's poses instead of the ground truth (see --help).
+// --attribute adds what those lines do to the pose, to first order: per frame, one Gauss-Newton
+// step of the edge stage's problem (all cameras' lines, Cauchy weights at edge.robust_scale)
+// from the true pose, δ = −H⁻¹ Σ_i w_i J_iᵀ r_i, is split into the parts of each camera's rims
+// (the sums over its lines of one bin). Each part moves the object's bounding-box centre; the
+// table gives that move in every camera's frame (mm, + = along the camera's x / y / z, as
+// pbr_errors' bias: y + = down), averaged over frames, and the parts' total. So it tells which
+// rims of which camera make a bias of the annotation.
 // Prints per camera: lines measured / candidates, and per bin count, mean μ and its standard
 // error (px); then the quantiles of μ per bin over all cameras.
+#include <ceres/crs_matrix.h>
+#include <ceres/problem.h>
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -37,6 +47,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <optional>
@@ -45,14 +56,17 @@
 
 #include "bcot/annotate/annotate_options.h"
 #include "bcot/annotate/annotator.h"
+#include "bcot/core/annotation_poses.h"
 #include "bcot/core/image_io.h"
 #include "bcot/core/linear_rgb.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/se3.h"
 #include "bcot/core/sequence.h"
+#include "bcot/optim/correspondence_line_cost.h"
 #include "bcot/optim/edge_lines.h"
 #include "bcot/optim/frame_problem.h"
 #include "bcot/optim/response_estimation.h"
+#include "bcot/optim/se3_manifold.h"
 #include "bcot/optim/silhouette.h"
 #include "bcot/render/mesh.h"
 #include "bcot/render/ray_caster.h"
@@ -177,6 +191,106 @@ std::array<double, kBlurSubframes> ContourCrossingsOverExposure(const bcot::RayC
   return crossings;
 }
 
+// --attribute (see the header): the first-order pose error of each camera's rims.
+void PrintAttribution(
+    const bcot::bench::GroundTruthSequence& loaded,
+    const std::vector<std::vector<std::shared_ptr<const bcot::CorrespondenceLines>>>& frame_lines,
+    double robust_scale) {
+  using namespace bcot;
+  const Sequence& sequence = loaded.sequence;
+  const int cameras = sequence.rig.size();
+  const int groups = cameras * static_cast<int>(kBins.size());
+  const Eigen::Vector3d centre =
+      loaded.mesh.objcentre_from_template() * loaded.mesh.bbox_center();  // in O_o
+  // sums over frames: move of the centre per group, in each camera's frame
+  std::vector<std::vector<Eigen::Vector3d>> moved(
+      groups, std::vector<Eigen::Vector3d>(cameras, Eigen::Vector3d::Zero()));
+  std::vector<int> group_lines(groups, 0);
+  std::vector<double> group_mu(groups, 0.0);
+  int solved = 0;
+  for (size_t f = 0; f < frame_lines.size(); ++f) {
+    const Eigen::Isometry3d truth = loaded.RigFromObjcentre(static_cast<int>(f));
+    PoseParameters x = ToPoseParameters(truth);
+    ceres::Problem problem;
+    std::vector<int> group_of_row;
+    for (int v = 0; v < cameras; ++v) {
+      const std::shared_ptr<const CorrespondenceLines>& lines = frame_lines[f][v];
+      if (lines == nullptr) continue;
+      problem.AddResidualBlock(
+          new CorrespondenceLineCostFunction(sequence.rig[v].camera, sequence.rig[v].cam_from_rig,
+                                             lines, 1.0),
+          nullptr, x.data());
+      for (const CorrespondenceLine& line : lines->lines) {
+        const int g = v * static_cast<int>(kBins.size()) + BinOf(line.normal);
+        group_of_row.push_back(g);
+        ++group_lines[g];
+        group_mu[g] += line.mean_px;
+      }
+    }
+    if (group_of_row.size() < 6) continue;
+    problem.SetManifold(x.data(), new Se3Manifold());
+    double cost = 0.0;
+    std::vector<double> residuals;
+    ceres::CRSMatrix jacobian;
+    if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, &residuals, nullptr,
+                          &jacobian)) {
+      continue;
+    }
+    using Vector6d = Eigen::Matrix<double, 6, 1>;
+    Eigen::Matrix<double, 6, 6> h = Eigen::Matrix<double, 6, 6>::Zero();
+    std::vector<Vector6d> gradient(groups, Vector6d::Zero());  // Σ w J r per group
+    for (int row = 0; row < jacobian.num_rows; ++row) {
+      Vector6d j = Vector6d::Zero();
+      for (int k = jacobian.rows[row]; k < jacobian.rows[row + 1]; ++k) {
+        j[jacobian.cols[k]] = jacobian.values[k];
+      }
+      const double r = residuals[row];
+      const double w = 1.0 / (1.0 + r * r / (robust_scale * robust_scale));  // Cauchy ρ'
+      h += w * j * j.transpose();
+      gradient[group_of_row[row]] += w * r * j;
+    }
+    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> solver(h);
+    if (solver.info() != Eigen::Success) continue;
+    ++solved;
+    for (int g = 0; g < groups; ++g) {
+      const Vector6d delta = -solver.solve(gradient[g]);  // (ρ, φ) in O_o
+      const Eigen::Vector3d in_rig =
+          truth.linear() * (delta.head<3>() + delta.tail<3>().cross(centre));
+      for (int c = 0; c < cameras; ++c) {
+        moved[g][c] += sequence.rig[c].cam_from_rig.linear() * in_rig;
+      }
+    }
+  }
+  if (solved == 0) return;
+  std::printf(
+      "\nfirst-order move of the bounding-box centre (mm, each camera's axes) by the rims "
+      "of each camera, mean over %d frames\n",
+      solved);
+  std::printf("%-6s %-5s %6s %8s", "rims", "", "lines", "mean μ");
+  for (int c = 0; c < cameras; ++c) {
+    std::printf(" | %-5s %7s %7s %7s", sequence.rig[c].camera.name.c_str(), "x", "y", "z");
+  }
+  std::printf("\n");
+  std::vector<Eigen::Vector3d> total(cameras, Eigen::Vector3d::Zero());
+  for (int g = 0; g < groups; ++g) {
+    const int v = g / static_cast<int>(kBins.size());
+    std::printf("%-6s %-5s %6d %+8.3f", sequence.rig[v].camera.name.c_str(),
+                kBins[g % kBins.size()], group_lines[g],
+                group_lines[g] > 0 ? group_mu[g] / group_lines[g] : 0.0);
+    for (int c = 0; c < cameras; ++c) {
+      const Eigen::Vector3d mean = moved[g][c] / solved;
+      total[c] += mean;
+      std::printf(" | %-5s %+7.3f %+7.3f %+7.3f", "", mean.x(), mean.y(), mean.z());
+    }
+    std::printf("\n");
+  }
+  std::printf("%-6s %-5s %6s %8s", "total", "", "", "");
+  for (int c = 0; c < cameras; ++c) {
+    std::printf(" | %-5s %+7.3f %+7.3f %+7.3f", "", total[c].x(), total[c].y(), total[c].z());
+  }
+  std::printf("\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -205,6 +319,20 @@ int main(int argc, char** argv) {
   std::vector<std::string> candidate_tables;
   app.add_option("--candidate-table", candidate_tables,
                  "With --response-frames: also score this response table (repeatable)");
+  std::string at_annotation;
+  app.add_option("--at", at_annotation,
+                 "Measure at this annotation's poses (its rig_from_object.txt) instead of the "
+                 "ground truth: μ is then the offset from that pose's contour, and --attribute "
+                 "the first-order step the lines would take from there (0 at the edge stage's "
+                 "fixed point)");
+  double shift_px = 0.0;
+  app.add_option("--shift-test", shift_px,
+                 "Also measure every line with its contour point moved by ± this (px) along the "
+                 "normal: a line that sees a fixed image edge moves its μ by ∓ the same")
+      ->check(CLI::Range(0.0, 2.0));
+  bool attribute = false;
+  app.add_flag("--attribute", attribute,
+               "Also the first-order pose error each camera's rims cause (see the header)");
   bool coverage_mask = false;
   app.add_flag("--coverage-mask", coverage_mask,
                "Measure on gt/mask (the renderer's anti-aliased object coverage) instead of the "
@@ -213,8 +341,17 @@ int main(int argc, char** argv) {
 
   const StatusOr<AnnotateOptions> options = ReadAnnotateOptions(config_path, overrides);
   if (!options.ok()) return Fail(options.status().message());
-  const StatusOr<bench::GroundTruthSequence> loaded = bench::LoadGroundTruthSequence(sequence_dir);
+  StatusOr<bench::GroundTruthSequence> loaded = bench::LoadGroundTruthSequence(sequence_dir);
   if (!loaded.ok()) return Fail(loaded.status().message());
+  if (!at_annotation.empty()) {
+    StatusOr<std::vector<Eigen::Isometry3d>> poses = ReadAnnotationPoses(at_annotation);
+    if (!poses.ok()) return Fail(poses.status().message());
+    if (poses->size() != loaded->truth.size()) {
+      return Fail(fmt::format("{}: {} poses for {} frames", at_annotation, poses->size(),
+                              loaded->truth.size()));
+    }
+    loaded->truth = *std::move(poses);
+  }
   const Sequence* sequence = &loaded->sequence;
   const std::vector<Eigen::Isometry3d>* gt = &loaded->truth;
   const Mesh* mesh = &loaded->mesh;
@@ -291,9 +428,13 @@ int main(int argc, char** argv) {
   if (!fits_path.empty() && fits == nullptr) return Fail("cannot write " + fits_path);
   const int half = static_cast<int>(std::floor(edge.window_px / edge.step_px + 1e-9));
   const LinearTable linear(edge.response);
+  // The measured lines per frame and camera (--attribute).
+  std::vector<std::vector<std::shared_ptr<const CorrespondenceLines>>> frame_lines(
+      frames, std::vector<std::shared_ptr<const CorrespondenceLines>>(sequence->rig.size()));
   for (int v = 0; v < sequence->rig.size(); ++v) {
     const RigCamera& camera = sequence->rig[v];
     std::array<Accumulator, 4> bins{};
+    std::array<Accumulator, 4> shift_bins{}, stable_bins{};
     int candidates = 0, measured = 0;
     for (int f = 0; f < frames; ++f) {
       const StatusOr<cv::Mat3b> image =
@@ -312,11 +453,29 @@ int main(int argc, char** argv) {
           BuildEdgeLines(caster, camera.camera, camera.cam_from_rig, rig_from_objcentre, *image,
                          silhouette, edge, chroma[v]);
       if (!lines.ok()) return Fail(lines.status().message());
+      if (attribute && !lines->lines.empty()) {
+        frame_lines[f][v] = std::make_shared<const CorrespondenceLines>(*lines);
+      }
       candidates += lines->candidates;
       for (const CorrespondenceLine& line : lines->lines) {
         ++measured;
         bins[BinOf(line.normal)].Add(line.mean_px);
         total[BinOf(line.normal)].Add(line.mean_px);
+        if (shift_px > 0.0) {
+          EdgeFit inward, outward;
+          const bool found =
+              FitEdgeAcross(*image, linear, line.centre - shift_px * line.normal, line.normal, edge,
+                            &inward, chroma[v]) == EdgeAcross::kFound &&
+              FitEdgeAcross(*image, linear, line.centre + shift_px * line.normal, line.normal, edge,
+                            &outward, chroma[v]) == EdgeAcross::kFound;
+          // The image edge's position along the normal from each of the three anchors.
+          const double spread =
+              found ? std::max({std::abs(inward.mean_px - shift_px - line.mean_px),
+                                std::abs(outward.mean_px + shift_px - line.mean_px)})
+                    : std::numeric_limits<double>::infinity();
+          shift_bins[BinOf(line.normal)].Add(found ? spread : 9.0);
+          if (spread <= 0.1) stable_bins[BinOf(line.normal)].Add(line.mean_px);
+        }
         EdgeFit fit;
         if (fits != nullptr && FitEdgeAcross(*image, linear, line.centre, line.normal, edge, &fit,
                                              chroma[v]) == EdgeAcross::kFound) {
@@ -351,6 +510,21 @@ int main(int argc, char** argv) {
       all.sum += bin.sum;
     }
     std::printf(" | %+8.3f\n", all.Mean());
+    if (shift_px > 0.0) {
+      std::printf("%-6s %9s", "  moved", "");
+      for (const Accumulator& bin : shift_bins) {
+        int stable = 0;
+        for (double d : bin.values) stable += d <= 0.1;
+        std::printf(" | %-5s %5d %7.0f%% %6.3f", "", bin.count,
+                    bin.count > 0 ? 100.0 * stable / bin.count : 0.0, bin.Quantile(0.5));
+      }
+      std::printf(" |  (lines, share within 0.1 px, median disagreement px)\n");
+      std::printf("%-6s %9s", "  stable", "");
+      for (const Accumulator& bin : stable_bins) {
+        std::printf(" | %-5s %5d %+8.3f %6.3f", "", bin.count, bin.Mean(), bin.StandardError());
+      }
+      std::printf(" |  (mean μ of the lines within 0.1 px)\n");
+    }
   }
   if (dump != nullptr) std::fclose(dump);
   if (fits != nullptr) std::fclose(fits);
@@ -364,5 +538,6 @@ int main(int argc, char** argv) {
     for (double q : {0.1, 0.25, 0.5, 0.75, 0.9}) std::printf(" %+7.3f", total[b].Quantile(q));
     std::printf("\n");
   }
+  if (attribute) PrintAttribution(*loaded, frame_lines, frame.edge.robust_scale);
   return 0;
 }
