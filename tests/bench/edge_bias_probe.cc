@@ -38,6 +38,7 @@
 // Prints per camera: lines measured / candidates, and per bin count, mean μ and its standard
 // error (px); then the quantiles of μ per bin over all cameras.
 #include <ceres/crs_matrix.h>
+#include <ceres/loss_function.h>
 #include <ceres/problem.h>
 #include <fmt/format.h>
 
@@ -207,6 +208,8 @@ void PrintAttribution(
       groups, std::vector<Eigen::Vector3d>(cameras, Eigen::Vector3d::Zero()));
   std::vector<int> group_lines(groups, 0);
   std::vector<double> group_mu(groups, 0.0);
+  // The edge stage's loss (configs/annotate.yaml's, EdgeRobustLoss::kCauchy).
+  const ceres::CauchyLoss loss(robust_scale);
   int solved = 0;
   for (size_t f = 0; f < frame_lines.size(); ++f) {
     const Eigen::Isometry3d truth = loaded.RigFromObjcentre(static_cast<int>(f));
@@ -245,7 +248,9 @@ void PrintAttribution(
         j[jacobian.cols[k]] = jacobian.values[k];
       }
       const double r = residuals[row];
-      const double w = 1.0 / (1.0 + r * r / (robust_scale * robust_scale));  // Cauchy ρ'
+      double rho[3];
+      loss.Evaluate(r * r, rho);
+      const double w = rho[1];  // the IRLS weight ρ'(r²)
       h += w * j * j.transpose();
       gradient[group_of_row[row]] += w * r * j;
     }

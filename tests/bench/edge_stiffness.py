@@ -2,6 +2,7 @@
 """How far each edge line's image edge moves when the pose it is measured from moves.
 
 Usage: /usr/bin/python3 tests/bench/edge_stiffness.py TRUTH.txt MOVED.txt [--white W]
+                                                      [--window-px P]
 
 TRUTH.txt and MOVED.txt are `edge_bias_probe --dump` files of one sequence, measured at the
 ground truth and at moved poses (`--at`, e.g. from tests/bench/move_poses.py). Each line of
@@ -19,18 +20,18 @@ from collections import defaultdict
 import numpy as np
 
 
-def load(path):
+def load(path, window_px):
     """(camera, frame) -> list of (rim, centre, normal, μ, outside colour)."""
     lines = defaultdict(list)
     with open(path) as f:
         for row in f:
             fields = row.split()
+            if "BLUR" in fields:  # --blur-exposure appends the contour crossings
+                fields = fields[: fields.index("BLUR")]
             values = np.array([float(v) for v in fields[3:9]])
-            profile = np.array([float(v) for v in fields[9:]
-                                if v != "BLUR"][: (len(fields) - 9) // 3 * 3]).reshape(-1, 3)
-            half = profile.shape[0] // 2
-            step = 4.0 / half  # the probe samples ±window_px (4 px by default) in `half` steps
-            first_outside = half + int(np.ceil(1.25 / step))
+            profile = np.array([float(v) for v in fields[9:]]).reshape(-1, 3)
+            half = profile.shape[0] // 2  # samples at k·window_px/half, k = −half..half
+            first_outside = half + int(np.ceil(1.25 * half / window_px))
             outside = profile[first_outside:].mean(axis=0)
             lines[(fields[0], int(fields[1]))].append(
                 (fields[2], values[0:2], values[2:4], values[4], outside))
@@ -42,8 +43,10 @@ def main():
     parser.add_argument("truth")
     parser.add_argument("moved")
     parser.add_argument("--white", type=float, default=0.35)
+    parser.add_argument("--window-px", type=float, default=4.0,
+                        help="the probe's edge.window_px (the dumps' profile half-length)")
     args = parser.parse_args()
-    truth, moved = load(args.truth), load(args.moved)
+    truth, moved = load(args.truth, args.window_px), load(args.moved, args.window_px)
     groups = defaultdict(list)
     for key, lines in truth.items():
         others = moved.get(key, [])

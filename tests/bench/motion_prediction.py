@@ -18,6 +18,10 @@ import sys
 import numpy as np
 import yaml
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "scripts", "pbr"))
+import pbr_common as pc  # noqa: E402
+
 
 def angle_deg(rotation):
     return np.degrees(np.arccos(np.clip((np.trace(rotation) - 1.0) / 2.0, -1.0, 1.0)))
@@ -34,11 +38,8 @@ def main():
         if not os.path.isfile(path):
             sys.exit(f"motion_prediction: {path}: not found")
     obj = yaml.safe_load(open(object_path))
-    mesh_path = os.path.join(seq, obj["mesh"])
-    if not mesh_path.endswith(".obj"):
-        sys.exit(f"motion_prediction: {mesh_path}: only .obj meshes are read here")
-    vertices = np.array([[float(v) for v in line.split()[1:4]] for line in open(mesh_path)
-                         if line.startswith("v ")]) * float(obj.get("unit_to_mm", 1.0))
+    vertices, _ = pc.load_mesh_arrays(os.path.join(seq, obj["mesh"]))
+    vertices = np.asarray(vertices, float) * float(obj.get("unit_to_mm", 1.0))
     centre = (vertices.min(axis=0) + vertices.max(axis=0)) / 2.0
     poses = np.loadtxt(poses_path, ndmin=2)
     if len(poses) < 3:
