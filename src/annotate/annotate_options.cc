@@ -210,6 +210,16 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "sigma", "threshold of the edge residuals' robust loss")
       .Range(Positive());
   s->Add(
+       "edge.redescending_rounds",
+       [](auto& o) -> auto& { return o.tracker.frame.edge.redescending_rounds; }, "",
+       "re-rendered edge solves after edge.rounds, with Tukey's loss on each line")
+      .Range(AtLeast(0));
+  s->Add(
+       "edge.redescending_scale",
+       [](auto& o) -> auto& { return o.tracker.frame.edge.redescending_scale; }, "sigma",
+       "threshold of the redescending rounds' Tukey loss")
+      .Range(Positive());
+  s->Add(
        "edge.line_spacing_px",
        [](auto& o) -> auto& { return o.tracker.frame.edge.lines.line_spacing_px; }, "px",
        "one edge line per this length of contour, evenly spaced along it")

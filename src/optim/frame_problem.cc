@@ -94,6 +94,14 @@ Status EdgeRefineOptions::Validate() const {
   if (!(robust_scale > 0.0) || !std::isfinite(robust_scale)) {
     violations.push_back(fmt::format("robust_scale = {}, must be finite and > 0", robust_scale));
   }
+  if (redescending_rounds < 0) {
+    violations.push_back(
+        fmt::format("redescending_rounds = {}, must be >= 0", redescending_rounds));
+  }
+  if (!(redescending_scale > 0.0) || !std::isfinite(redescending_scale)) {
+    violations.push_back(
+        fmt::format("redescending_scale = {}, must be finite and > 0", redescending_scale));
+  }
   if (min_lines < 6) violations.push_back(fmt::format("min_lines = {}, must be >= 6", min_lines));
   const Status lines_status = lines.Validate();
   if (!lines_status.ok()) violations.push_back(lines_status.message());
@@ -213,15 +221,16 @@ void AddDamping(const FrameProblemOptions& options, const std::vector<ViewTempla
       parameters);
 }
 
-// The loss of one edge line's residual (EdgeRefineOptions::robust_loss), owned by the caller.
-ceres::LossFunction* EdgeLoss(const EdgeRefineOptions& edge) {
-  switch (edge.robust_loss) {
+// The loss of one edge line's whitened residual: `kind` with threshold `scale`, owned by the
+// caller.
+ceres::LossFunction* EdgeLoss(EdgeRobustLoss kind, double scale) {
+  switch (kind) {
     case EdgeRobustLoss::kHuber:
-      return new ceres::HuberLoss(edge.robust_scale);
+      return new ceres::HuberLoss(scale);
     case EdgeRobustLoss::kCauchy:
-      return new ceres::CauchyLoss(edge.robust_scale);
+      return new ceres::CauchyLoss(scale);
     case EdgeRobustLoss::kTukey:
-      return new ceres::TukeyLoss(edge.robust_scale);
+      return new ceres::TukeyLoss(scale);
   }
   return nullptr;
 }
@@ -246,13 +255,14 @@ ceres::LossFunction* EdgeLoss(const EdgeRefineOptions& edge) {
 constexpr double kPosteriorViewScale = 3.0;
 constexpr double kPosteriorLineSpacingPx = 3.5;
 
-// (EdgePosterior, continued.) For a body of revolution (`symmetry`, O_o) no line observes the
-// turn about its axis, so H is singular along its twist. Neither the solves nor the window move
-// along it (AxisLockedSe3Manifold); H gets the mean of its eigenvalues along it, so that it can
-// be inverted, which changes nothing in the directions the window estimates.
+// (EdgePosterior, continued.) The lines' weights are those of the solve's loss (`loss_kind` at
+// `loss_scale`). For a body of revolution (`symmetry`, O_o) no line observes the turn about its
+// axis, so H is singular along its twist. Neither the solves nor the window move along it
+// (AxisLockedSe3Manifold); H gets the mean of its eigenvalues along it, so that it can be
+// inverted, which changes nothing in the directions the window estimates.
 std::shared_ptr<const PoseGaussian> EdgePosterior(
     const std::vector<std::pair<int, std::shared_ptr<const CorrespondenceLines>>>& measured,
-    const std::vector<FrameView>& views, const EdgeRefineOptions& edge,
+    const std::vector<FrameView>& views, EdgeRobustLoss loss_kind, double loss_scale,
     const Eigen::Isometry3d& pose, const std::optional<RotationalSymmetry>& symmetry) {
   PoseParameters x = ToPoseParameters(pose);
   ceres::Problem problem;
@@ -279,7 +289,7 @@ std::shared_ptr<const PoseGaussian> EdgePosterior(
       static_cast<int>(view_of_row.size()) != jacobian.num_rows) {
     return nullptr;
   }
-  const std::unique_ptr<ceres::LossFunction> loss(EdgeLoss(edge));
+  const std::unique_ptr<ceres::LossFunction> loss(EdgeLoss(loss_kind, loss_scale));
   std::vector<Matrix6d> view_information(measured.size(), Matrix6d::Zero());
   std::vector<double> view_cost(measured.size(), 0.0);  // S_v
   double num_rows = 0.0;                                // Σ_i w_i
@@ -645,7 +655,8 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
   const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
   // Model points are read from the contour only: a coarse point stride saves closest hits.
   constexpr int kPointStridePx = 64;
-  for (int round = 0; round < edge.rounds; ++round) {
+  const int total_rounds = edge.rounds + edge.redescending_rounds;
+  for (int round = 0; round < total_rounds; ++round) {
     const Eigen::Isometry3d linearisation_pose = FromPoseParameters(parameters);
     // The views' lines are measured concurrently, then added in view order.
     std::vector<std::shared_ptr<const CorrespondenceLines>> view_lines(views.size());
@@ -659,29 +670,34 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
       // (scripts/bench_edge_fit.sh); the earlier rounds only bring the contour within a fraction
       // of a pixel, the last one's lines place the pose, so only they are corrected
       // (docs/notes/issue12_jpeg_chroma.md).
-      const ChromaSampling chroma = round + 1 == edge.rounds ? view.chroma : ChromaSampling::Full();
+      const ChromaSampling chroma =
+          round + 1 == total_rounds ? view.chroma : ChromaSampling::Full();
       StatusOr<CorrespondenceLines> lines =
           BuildEdgeLines(caster_, *view.camera, view.cam_from_rig, linearisation_pose, *view.image,
                          silhouette, edge.lines, chroma, &creases_);
       BCOT_CHECK(lines.ok());
       view_lines[v] = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
     });
-    ceres::Problem problem;
     std::vector<std::pair<int, std::shared_ptr<const CorrespondenceLines>>> measured;
     int total_lines = 0;
     for (size_t v = 0; v < views.size(); ++v) {
-      const FrameView& view = views[v];
       if (view_lines[v] == nullptr || view_lines[v]->lines.empty()) continue;
       total_lines += static_cast<int>(view_lines[v]->lines.size());
-      const std::shared_ptr<const CorrespondenceLines>& shared = view_lines[v];
+      measured.emplace_back(static_cast<int>(v), view_lines[v]);
+    }
+    if (total_lines < edge.min_lines) return false;
+    const bool redescending = round >= edge.rounds;
+    const EdgeRobustLoss loss_kind = redescending ? EdgeRobustLoss::kTukey : edge.robust_loss;
+    const double loss_scale = redescending ? edge.redescending_scale : edge.robust_scale;
+    ceres::Problem problem;
+    for (const auto& [v, shared] : measured) {
+      const FrameView& view = views[v];
       for (int i = 0; i < static_cast<int>(shared->lines.size()); ++i) {
         problem.AddResidualBlock(new CorrespondenceLineCostFunction(*view.camera, view.cam_from_rig,
                                                                     shared, view.weight, i, 1),
-                                 EdgeLoss(edge), parameters);
+                                 EdgeLoss(loss_kind, loss_scale), parameters);
       }
-      measured.emplace_back(static_cast<int>(v), shared);
     }
-    if (total_lines < edge.min_lines) return false;
     problem.SetManifold(parameters, NewPoseManifold(symmetry_in_objcentre_).release());
     const ceres::Solver::Summary ceres_summary =
         SolvePose(edge.iterations, options_.num_threads, &problem);
@@ -693,11 +709,16 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
     }
     const Eigen::Isometry3d round_end = FromPoseParameters(parameters);
     if (posterior != nullptr) {
-      *posterior = EdgePosterior(measured, views, edge, round_end, symmetry_in_objcentre_);
+      *posterior =
+          EdgePosterior(measured, views, loss_kind, loss_scale, round_end, symmetry_in_objcentre_);
     }
     const double moved_deg = RotationDistanceDeg(linearisation_pose.linear(), round_end.linear());
     const double moved_mm = (round_end.translation() - linearisation_pose.translation()).norm();
-    if (moved_deg < options_.round_tolerance_deg && moved_mm < options_.round_tolerance_mm) break;
+    if (moved_deg < options_.round_tolerance_deg && moved_mm < options_.round_tolerance_mm) {
+      // Converged under this loss: on to the redescending rounds, if any are still to come.
+      if (round >= edge.rounds || edge.redescending_rounds == 0) break;
+      round = edge.rounds - 1;
+    }
   }
   return true;
 }

@@ -245,6 +245,7 @@ StatusOr<ResponseEstimate> EstimateImageResponse(const FrameProblem& problem,
     frame.edge.lines.crease_contours = false;
     frame.edge.lines.response = response;
     frame.edge.rounds = options.edge_rounds;
+    frame.edge.redescending_rounds = 0;  // Cauchy solves only, as calibrated
     const FrameProblem candidate(problem.caster(), frame, std::nullopt, problem.viewpoint_model());
     Eigen::Isometry3d solved = rig_from_objcentre;
     ResponseScore& score = estimate.scores[c];

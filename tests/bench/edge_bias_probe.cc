@@ -35,6 +35,10 @@
 // table gives that move in every camera's frame (mm, + = along the camera's x / y / z, as
 // pbr_errors' bias: y + = down), averaged over frames, and the parts' total. So it tells which
 // rims of which camera make a bias of the annotation.
+// --solve-out DIR runs the whole edge stage instead (FrameProblem::SolveEdges: its Cauchy and
+// Tukey rounds) on every frame, from the true pose or --at's, and writes the poses it ends at
+// to DIR/rig_from_object.txt for pbr_errors: where the stage's fixed point lies, with no region
+// stage, tracking or window (docs/notes/issue12_redescending_round.md).
 // Prints per camera: lines measured / candidates, and per bin count, mean μ and its standard
 // error (px); then the quantiles of μ per bin over all cameras.
 #include <ceres/crs_matrix.h>
@@ -47,6 +51,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
@@ -123,6 +128,30 @@ bcot::StatusOr<cv::Mat3b> CoverageAsImage(const std::string& sequence_dir,
 int Fail(const std::string& message) {
   std::fprintf(stderr, "edge_bias_probe: %s\n", message.c_str());
   return 1;
+}
+
+// The views of frame `f` of `sequence`, their images read into `images` (which the views point
+// into), each camera's chroma sampling from `chroma`.
+bcot::Status ReadFrameViews(const bcot::Sequence& sequence, int f,
+                            const std::vector<bcot::ChromaSampling>& chroma,
+                            std::vector<cv::Mat3b>* images, std::vector<bcot::FrameView>* views) {
+  images->clear();
+  for (int v = 0; v < sequence.rig.size(); ++v) {
+    bcot::StatusOr<cv::Mat3b> image =
+        bcot::ReadCameraImage(sequence.image_paths[v][f], sequence.rig[v].camera);
+    if (!image.ok()) return image.status();
+    images->push_back(*image);
+  }
+  views->clear();
+  for (int v = 0; v < sequence.rig.size(); ++v) {
+    bcot::FrameView view;
+    view.camera = &sequence.rig[v].camera;
+    view.cam_from_rig = sequence.rig[v].cam_from_rig;
+    view.image = &(*images)[v];
+    view.chroma = chroma[v];
+    views->push_back(view);
+  }
+  return bcot::Status::Ok();
 }
 
 constexpr int kBlurSubframes = 8;
@@ -338,6 +367,12 @@ int main(int argc, char** argv) {
   bool attribute = false;
   app.add_flag("--attribute", attribute,
                "Also the first-order pose error each camera's rims cause (see the header)");
+  std::string solve_out;
+  app.add_option("--solve-out", solve_out,
+                 "Run the edge stage (FrameProblem::SolveEdges, edge.rounds re-rendered solves) on "
+                 "every frame from the measured poses (the truth, or --at's) and write the poses "
+                 "it ends at as an annotation directory (rig_from_object.txt) for pbr_errors, then "
+                 "exit");
   bool coverage_mask = false;
   app.add_flag("--coverage-mask", coverage_mask,
                "Measure on gt/mask (the renderer's anti-aliased object coverage) instead of the "
@@ -381,6 +416,26 @@ int main(int argc, char** argv) {
     chroma[v] = *resolved;
   }
 
+  if (!solve_out.empty()) {
+    const FrameProblem problem(caster, frame);
+    std::vector<Eigen::Isometry3d> poses;
+    for (int f = 0; f < frames; ++f) {
+      std::vector<cv::Mat3b> images;
+      std::vector<FrameView> views;
+      const Status read = ReadFrameViews(*sequence, f, chroma, &images, &views);
+      if (!read.ok()) return Fail(read.message());
+      Eigen::Isometry3d rig_from_objcentre = (*gt)[f] * mesh->objcentre_from_template().inverse();
+      if (!problem.SolveEdges(views, &rig_from_objcentre)) {
+        return Fail(fmt::format("frame {}: the edge stage failed", f));
+      }
+      poses.push_back(rig_from_objcentre * mesh->objcentre_from_template());
+    }
+    std::filesystem::create_directories(solve_out);
+    const Status written = WritePoseFile(solve_out + "/rig_from_object.txt", poses);
+    if (!written.ok()) return Fail(written.message());
+    return 0;
+  }
+
   if (response_frames > 0) {
     const FrameProblem problem(caster, frame);
     ResponseEstimationOptions estimation;
@@ -396,20 +451,8 @@ int main(int argc, char** argv) {
     for (int f = 0; f < std::min(response_frames, sequence->num_frames); f += 5) {
       std::vector<cv::Mat3b> images;
       std::vector<FrameView> views;
-      for (int v = 0; v < sequence->rig.size(); ++v) {
-        StatusOr<cv::Mat3b> image =
-            ReadCameraImage(sequence->image_paths[v][f], sequence->rig[v].camera);
-        if (!image.ok()) return Fail(image.status().message());
-        images.push_back(*image);
-      }
-      for (int v = 0; v < sequence->rig.size(); ++v) {
-        FrameView view;
-        view.camera = &sequence->rig[v].camera;
-        view.cam_from_rig = sequence->rig[v].cam_from_rig;
-        view.image = &images[v];
-        view.chroma = chroma[v];
-        views.push_back(view);
-      }
+      const Status read = ReadFrameViews(*sequence, f, chroma, &images, &views);
+      if (!read.ok()) return Fail(read.message());
       const StatusOr<ResponseEstimate> estimate =
           EstimateImageResponse(problem, views, loaded->RigFromObjcentre(f), estimation);
       if (!estimate.ok()) return Fail(estimate.status().message());

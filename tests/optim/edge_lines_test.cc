@@ -566,8 +566,9 @@ TEST(EdgeStageTest, InnerContourLinesFindTheStepAtTheTruePose) {
 // outside the contour on alternate 8 px stretches: half of the upper lines are then measured
 // ~1.5 px inside. One residual block per line lets a robust loss discount them; the Cauchy loss
 // (the default) does so better than Huber, which only bounds their influence.
-void EraseAlternateUpperRimStretches(const RayCaster& caster, const Camera& camera,
-                                     const Eigen::Isometry3d& cam_from_object, cv::Mat3b* image) {
+void EraseUpperRimStretches(const RayCaster& caster, const Camera& camera,
+                            const Eigen::Isometry3d& cam_from_object, double depth_px,
+                            cv::Mat3b* image) {
   const Silhouette silhouette = RenderSilhouette(caster, camera, cam_from_object, ContourOptions{});
   const cv::Mat3b original = image->clone();
   const cv::Rect bounds(0, 0, image->cols, image->rows);
@@ -578,7 +579,7 @@ void EraseAlternateUpperRimStretches(const RayCaster& caster, const Camera& came
     const cv::Point source(static_cast<int>(std::lround(outside.x())),
                            static_cast<int>(std::lround(outside.y())));
     if (!bounds.contains(source)) continue;
-    for (double s = -1.5; s <= 0.25; s += 0.25) {
+    for (double s = -depth_px; s <= 0.25; s += 0.25) {
       const Eigen::Vector2d at = point.pixel + s * point.normal;
       const cv::Point target(static_cast<int>(std::lround(at.x())),
                              static_cast<int>(std::lround(at.y())));
@@ -587,17 +588,29 @@ void EraseAlternateUpperRimStretches(const RayCaster& caster, const Camera& came
   }
 }
 
+// The edit above, `depth_px` deep, as an image edit of TrackedBiasNorms.
+ImageEdit EraseAlternateUpperRimStretches(double depth_px) {
+  return [depth_px](const RayCaster& caster, const Camera& camera,
+                    const Eigen::Isometry3d& cam_from_object, cv::Mat3b* image) {
+    EraseUpperRimStretches(caster, camera, cam_from_object, depth_px, image);
+  };
+}
+
 TEST(EdgeStageTest, RobustLossDiscountsRimsWithoutAStepAtTheEdge) {
   const std::vector<std::string> overrides = {"motion.num_frames=7", "render.threads=2"};
-  MultiViewTrackerOptions huber;
+  // Two rounds of the loss under test and no Tukey round (the next test's), which would
+  // discount these lines after either loss.
+  MultiViewTrackerOptions cauchy;
+  cauchy.frame.edge.rounds = 2;
+  cauchy.frame.edge.redescending_rounds = 0;
+  MultiViewTrackerOptions huber = cauchy;
   huber.frame.edge.robust_loss = EdgeRobustLoss::kHuber;
   const std::vector<double> clean =
-      TrackedBiasNorms("configs/synth/shaded_rim.yaml", overrides, MultiViewTrackerOptions());
+      TrackedBiasNorms("configs/synth/shaded_rim.yaml", overrides, cauchy);
   const std::vector<double> bounded = TrackedBiasNorms("configs/synth/shaded_rim.yaml", overrides,
-                                                       huber, EraseAlternateUpperRimStretches);
-  const std::vector<double> discounted =
-      TrackedBiasNorms("configs/synth/shaded_rim.yaml", overrides, MultiViewTrackerOptions(),
-                       EraseAlternateUpperRimStretches);
+                                                       huber, EraseAlternateUpperRimStretches(1.5));
+  const std::vector<double> discounted = TrackedBiasNorms(
+      "configs/synth/shaded_rim.yaml", overrides, cauchy, EraseAlternateUpperRimStretches(1.5));
   // Measured per camera: clean 0.066 mm; erased rims 0.178 mm with Huber, 0.068 mm with Cauchy.
   for (size_t c = 0; c < clean.size(); ++c) {
     SCOPED_TRACE(c);
@@ -605,6 +618,33 @@ TEST(EdgeStageTest, RobustLossDiscountsRimsWithoutAStepAtTheEdge) {
     EXPECT_LT(discounted[c], 0.09);
     EXPECT_LT(discounted[c], 0.5 * bounded[c]);
     EXPECT_LT(discounted[c], clean[c] + 0.02);
+  }
+}
+
+// The same rims erased only 0.75 px deep: half of the upper lines are then measured ~0.75 px
+// inside, near Cauchy's threshold (3σ, σ >= 0.1 px), where its weight still pulls. A last
+// round with Tukey's loss (edge.redescending_rounds), started where the Cauchy rounds ended,
+// gives them none.
+TEST(EdgeStageTest, RedescendingRoundDiscountsLinesMeasuredSlightlyInside) {
+  const std::vector<std::string> overrides = {"motion.num_frames=7", "render.threads=2"};
+  const ImageEdit shallow = EraseAlternateUpperRimStretches(0.75);
+  // The same number of edge rounds: two with Cauchy's loss, or one and then one with Tukey's
+  // (the default).
+  MultiViewTrackerOptions cauchy_only;
+  cauchy_only.frame.edge.rounds = 2;
+  cauchy_only.frame.edge.redescending_rounds = 0;
+  const MultiViewTrackerOptions redescending;
+  ASSERT_EQ(redescending.frame.edge.rounds + redescending.frame.edge.redescending_rounds, 2);
+  const std::vector<double> pulled =
+      TrackedBiasNorms("configs/synth/shaded_rim.yaml", overrides, cauchy_only, shallow);
+  const std::vector<double> discounted =
+      TrackedBiasNorms("configs/synth/shaded_rim.yaml", overrides, redescending, shallow);
+  // Measured per camera: 0.113 mm with the Cauchy rounds only, 0.044 mm with the Tukey round.
+  for (size_t c = 0; c < pulled.size(); ++c) {
+    SCOPED_TRACE(c);
+    EXPECT_GT(pulled[c], 0.09);
+    EXPECT_LT(discounted[c], 0.07);
+    EXPECT_LT(discounted[c], 0.6 * pulled[c]);
   }
 }
 

@@ -28,10 +28,13 @@ TEST(FrameProblemOptionsTest, ValidateListsEveryViolation) {
   options.coarse_check_min_shift_px = -3.0;
   options.region.band_px = 0.0;
   options.cost.heaviside_slope = -2.0;
+  options.edge.redescending_rounds = -1;
+  options.edge.redescending_scale = 0.0;
   test::ExpectErrorNaming(
       options.Validate(), StatusCode::kInvalidConfig,
       {"rounds = 0", "iterations = -1", "pyramid_levels = 9", "round_tolerance_mm = -1",
-       "coarse_check_min_shift_px = -3", "band_px = 0", "heaviside_slope = -2"});
+       "coarse_check_min_shift_px = -3", "band_px = 0", "heaviside_slope = -2",
+       "redescending_rounds = -1", "redescending_scale = 0"});
 }
 
 class FrameProblemTest : public test::BunnyCasterTest {

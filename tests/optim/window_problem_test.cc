@@ -261,6 +261,8 @@ class WindowSequenceTest : public test::BunnyCasterTest {
     // window reduces their jitter by 1.8–2.1× instead of ≥ 2× (0.0767 → 0.0370°, 0.0517 →
     // 0.0279 mm; 0.0700 → 0.0351°, 0.0405 → 0.0227 mm), the mean error not raised.
     MultiViewTrackerOptions tracker_options;
+    tracker_options.frame.edge.rounds = 2;
+    tracker_options.frame.edge.redescending_rounds = 0;
     tracker_options.frame.edge.robust_loss = EdgeRobustLoss::kHuber;
     tracker_options.frame.edge.robust_scale = 1e6;
     tracker_options.frame.edge.lines = edge_lines;

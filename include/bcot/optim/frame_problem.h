@@ -94,14 +94,25 @@ struct EdgeRefineOptions {
   // On by default (annotation); the temporal window takes each frame's edge pose posterior as
   // its data term (window_problem.h). configs/track.yaml switches it off for speed.
   bool enabled = true;
-  // Re-rendered edge solves; >= 1.
-  int rounds = 2;
+  // Re-rendered edge solves with robust_loss; >= 1.
+  int rounds = 1;
   // Ceres iterations per edge solve; >= 1.
   int iterations = 5;
   // Loss of each line's residual and its threshold (units of the line's σ); scale > 0.
   // Cauchy: docs/notes/issue12_robust_edges.md (Huber and Tukey measured beside it).
   EdgeRobustLoss robust_loss = EdgeRobustLoss::kCauchy;
   double robust_scale = 3.0;
+  // Re-rendered solves after those `rounds`, each line with Tukey's biweight loss at
+  // redescending_scale (σ units): a line farther than that from the contour then pulls not at
+  // all, where Cauchy's tail still pulls with weight ~(s/r)². Shaded, glossy and same-coloured
+  // rims put a one-sided group of lines inside the edge; that pull is what biases the pose
+  // towards them. A redescending loss lets the solve's start decide which lines it keeps, so it
+  // comes once the rounds above have brought the contour close (from the region result, often
+  // 0.5 px off, it drops good lines). docs/notes/issue12_redescending_round.md; >= 0, 0 = none.
+  // The scale (> 0): about twice the lines' actual spread, which is 2-4 times their σ from the
+  // profile fit (6, 7, 8 and 10 measured alike; 4.5 drops good lines).
+  int redescending_rounds = 1;
+  double redescending_scale = 7.0;
   // Fewest lines over all views for the stage to run; >= 6 (six pose parameters).
   int min_lines = 20;
   // Measurement along each line.

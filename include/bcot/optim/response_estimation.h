@@ -95,8 +95,9 @@ struct ResponseEstimationOptions {
   double min_spread_z = 2.0;
   // Bootstrap resamples of the lines per candidate (fixed seed: deterministic); >= 10.
   int bootstrap_samples = 200;
-  // Edge solves per candidate (edge.rounds replaced); >= 1. The pose of a solved frame moves
-  // by hundredths of a pixel between candidates, so one re-rendered solve suffices.
+  // Edge solves per candidate (edge.rounds replaced, no redescending rounds); >= 1. The pose of a
+  // solved frame moves by hundredths of a pixel between candidates, so one re-rendered solve
+  // suffices.
   int edge_rounds = 1;
   Status Validate() const;
 };
