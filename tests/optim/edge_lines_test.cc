@@ -639,7 +639,7 @@ TEST(EdgeStageTest, RedescendingRoundDiscountsLinesMeasuredSlightlyInside) {
       TrackedBiasNorms("configs/synth/shaded_rim.yaml", overrides, cauchy_only, shallow);
   const std::vector<double> discounted =
       TrackedBiasNorms("configs/synth/shaded_rim.yaml", overrides, redescending, shallow);
-  // Measured per camera: 0.113 mm with the Cauchy rounds only, 0.044 mm with the Tukey round.
+  // Measured per camera: 0.113 mm with two Cauchy rounds, 0.039 mm with one and a Tukey round.
   for (size_t c = 0; c < pulled.size(); ++c) {
     SCOPED_TRACE(c);
     EXPECT_GT(pulled[c], 0.09);
