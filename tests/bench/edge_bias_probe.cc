@@ -369,10 +369,10 @@ int main(int argc, char** argv) {
                "Also the first-order pose error each camera's rims cause (see the header)");
   std::string solve_out;
   app.add_option("--solve-out", solve_out,
-                 "Run the edge stage (FrameProblem::SolveEdges, edge.rounds re-rendered solves) on "
-                 "every frame from the measured poses (the truth, or --at's) and write the poses "
-                 "it ends at as an annotation directory (rig_from_object.txt) for pbr_errors, then "
-                 "exit");
+                 "Run the edge stage (FrameProblem::SolveEdges: its edge.rounds and "
+                 "edge.redescending_rounds re-rendered solves) on every frame from the measured "
+                 "poses (the truth, or --at's) and write the poses it ends at as an annotation "
+                 "directory (rig_from_object.txt) for pbr_errors, then exit");
   bool coverage_mask = false;
   app.add_flag("--coverage-mask", coverage_mask,
                "Measure on gt/mask (the renderer's anti-aliased object coverage) instead of the "
@@ -424,7 +424,7 @@ int main(int argc, char** argv) {
       std::vector<FrameView> views;
       const Status read = ReadFrameViews(*sequence, f, chroma, &images, &views);
       if (!read.ok()) return Fail(read.message());
-      Eigen::Isometry3d rig_from_objcentre = (*gt)[f] * mesh->objcentre_from_template().inverse();
+      Eigen::Isometry3d rig_from_objcentre = loaded->RigFromObjcentre(f);
       if (!problem.SolveEdges(views, &rig_from_objcentre)) {
         return Fail(fmt::format("frame {}: the edge stage failed", f));
       }
