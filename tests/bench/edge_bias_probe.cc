@@ -130,15 +130,18 @@ int Fail(const std::string& message) {
   return 1;
 }
 
-// The views of frame `f` of `sequence`, their images read into `images` (which the views point
-// into), each camera's chroma sampling from `chroma`.
-bcot::Status ReadFrameViews(const bcot::Sequence& sequence, int f,
+// The views of frame `f` of `sequence` (in `sequence_dir`), their images read into `images`
+// (which the views point into; the coverage masks instead when `coverage_mask`), each camera's
+// chroma sampling from `chroma`.
+bcot::Status ReadFrameViews(const bcot::Sequence& sequence, const std::string& sequence_dir,
+                            bool coverage_mask, int f,
                             const std::vector<bcot::ChromaSampling>& chroma,
                             std::vector<cv::Mat3b>* images, std::vector<bcot::FrameView>* views) {
   images->clear();
   for (int v = 0; v < sequence.rig.size(); ++v) {
     bcot::StatusOr<cv::Mat3b> image =
-        bcot::ReadCameraImage(sequence.image_paths[v][f], sequence.rig[v].camera);
+        coverage_mask ? CoverageAsImage(sequence_dir, sequence.rig[v].camera.name, f)
+                      : bcot::ReadCameraImage(sequence.image_paths[v][f], sequence.rig[v].camera);
     if (!image.ok()) return image.status();
     images->push_back(*image);
   }
@@ -422,7 +425,8 @@ int main(int argc, char** argv) {
     for (int f = 0; f < frames; ++f) {
       std::vector<cv::Mat3b> images;
       std::vector<FrameView> views;
-      const Status read = ReadFrameViews(*sequence, f, chroma, &images, &views);
+      const Status read =
+          ReadFrameViews(*sequence, sequence_dir, coverage_mask, f, chroma, &images, &views);
       if (!read.ok()) return Fail(read.message());
       Eigen::Isometry3d rig_from_objcentre = loaded->RigFromObjcentre(f);
       if (!problem.SolveEdges(views, &rig_from_objcentre)) {
@@ -451,7 +455,8 @@ int main(int argc, char** argv) {
     for (int f = 0; f < std::min(response_frames, sequence->num_frames); f += 5) {
       std::vector<cv::Mat3b> images;
       std::vector<FrameView> views;
-      const Status read = ReadFrameViews(*sequence, f, chroma, &images, &views);
+      const Status read =
+          ReadFrameViews(*sequence, sequence_dir, coverage_mask, f, chroma, &images, &views);
       if (!read.ok()) return Fail(read.message());
       const StatusOr<ResponseEstimate> estimate =
           EstimateImageResponse(problem, views, loaded->RigFromObjcentre(f), estimation);
