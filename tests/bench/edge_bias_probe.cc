@@ -33,8 +33,9 @@
 // from the true pose, δ = −H⁻¹ Σ_i w_i J_iᵀ r_i, is split into the parts of each camera's rims
 // (the sums over its lines of one bin). Each part moves the object's bounding-box centre; the
 // table gives that move in every camera's frame (mm, + = along the camera's x / y / z, as
-// pbr_errors' bias: y + = down), averaged over frames, and the parts' total. So it tells which
-// rims of which camera make a bias of the annotation.
+// pbr_errors' bias: y + = down), averaged over frames, and the parts' total. A second table
+// gives each part's rotation about the first camera's axes (deg, as pbr_errors --rotation). So
+// it tells which rims of which camera make a bias of the annotation.
 // --solve-out DIR runs the whole edge stage instead (FrameProblem::SolveEdges: its Cauchy and
 // Tukey rounds) on every frame, from the true pose or --at's, and writes the poses it ends at
 // to DIR/rig_from_object.txt for pbr_errors: where the stage's fixed point lies, with no region
@@ -238,6 +239,8 @@ void PrintAttribution(
   // sums over frames: move of the centre per group, in each camera's frame
   std::vector<std::vector<Eigen::Vector3d>> moved(
       groups, std::vector<Eigen::Vector3d>(cameras, Eigen::Vector3d::Zero()));
+  // sums over frames: rotation per group (deg), about the first camera's axes
+  std::vector<Eigen::Vector3d> turned(groups, Eigen::Vector3d::Zero());
   std::vector<int> group_lines(groups, 0);
   std::vector<double> group_mu(groups, 0.0);
   // The edge stage's loss (configs/annotate.yaml's, EdgeRobustLoss::kCauchy).
@@ -296,6 +299,8 @@ void PrintAttribution(
       for (int c = 0; c < cameras; ++c) {
         moved[g][c] += sequence.rig[c].cam_from_rig.linear() * in_rig;
       }
+      turned[g] +=
+          (180.0 / M_PI) * sequence.rig[0].cam_from_rig.linear() * truth.linear() * delta.tail<3>();
     }
   }
   if (solved == 0) return;
@@ -326,6 +331,18 @@ void PrintAttribution(
     std::printf(" | %-5s %+7.3f %+7.3f %+7.3f", "", total[c].x(), total[c].y(), total[c].z());
   }
   std::printf("\n");
+  std::printf("\nfirst-order rotation (deg, about %s's x / y / z) by the rims of each camera\n",
+              sequence.rig[0].camera.name.c_str());
+  Eigen::Vector3d total_turn = Eigen::Vector3d::Zero();
+  for (int g = 0; g < groups; ++g) {
+    const Eigen::Vector3d mean = turned[g] / solved;
+    total_turn += mean;
+    std::printf("%-6s %-5s %+7.3f %+7.3f %+7.3f\n",
+                sequence.rig[g / static_cast<int>(kBins.size())].camera.name.c_str(),
+                kBins[g % kBins.size()], mean.x(), mean.y(), mean.z());
+  }
+  std::printf("%-6s %-5s %+7.3f %+7.3f %+7.3f\n", "total", "", total_turn.x(), total_turn.y(),
+              total_turn.z());
 }
 
 }  // namespace
