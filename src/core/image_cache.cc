@@ -15,7 +15,7 @@ StatusOr<cv::Mat3b> DecodedImageCache::Read(const std::string& path, const Camer
       // reading the same file is checked again.
       if (kept->second.cols == camera.width && kept->second.rows == camera.height) {
         ++hits_;
-        return cv::Mat3b(kept->second.clone());
+        return kept->second;  // shares the kept pixels (header: read-only)
       }
     }
   }
@@ -24,7 +24,7 @@ StatusOr<cv::Mat3b> DecodedImageCache::Read(const std::string& path, const Camer
   const size_t size = image->total() * image->elemSize();
   const std::lock_guard<std::mutex> lock(mutex_);
   if (bytes_ + size <= budget_bytes_ && images_.count(path) == 0) {
-    images_.emplace(path, image->clone());
+    images_.emplace(path, *image);  // the decoded pixels themselves, shared with the caller
     bytes_ += size;
   }
   return image;

@@ -68,23 +68,26 @@ TEST(DecodedImageCacheTest, KeepsImagesInReadOrderUntilTheBudgetIsSpent) {
   EXPECT_THAT(third.status().message(), HasSubstr("2.png"));
 }
 
-TEST(DecodedImageCacheTest, ReturnedImagesOwnTheirPixels) {
+TEST(DecodedImageCacheTest, KeptImagesAreSharedNotCopied) {
   test::TempDir dir;
   const Camera camera = CameraOfSize(64, 48);
   const std::string path = WriteImage(dir, "a.png", 5);
   DecodedImageCache cache(size_t{1} << 20);
-  StatusOr<cv::Mat3b> decoded = cache.Read(path, camera);
+  const StatusOr<cv::Mat3b> decoded = cache.Read(path, camera);
   ASSERT_TRUE(decoded.ok());
-  const cv::Mat3b original = decoded->clone();
-  decoded->setTo(cv::Vec3b(0, 0, 0));
-  StatusOr<cv::Mat3b> kept = cache.Read(path, camera);
+  const StatusOr<cv::Mat3b> kept = cache.Read(path, camera);
   ASSERT_TRUE(kept.ok());
   EXPECT_EQ(cache.hits(), 1u);
-  EXPECT_TRUE(SamePixels(*kept, original));
-  kept->setTo(cv::Vec3b(9, 9, 9));
-  StatusOr<cv::Mat3b> again = cache.Read(path, camera);
-  ASSERT_TRUE(again.ok());
-  EXPECT_TRUE(SamePixels(*again, original));
+  // The same pixels, not a copy of them.
+  EXPECT_EQ(kept->data, decoded->data);
+  EXPECT_TRUE(SamePixels(*kept, *decoded));
+  // An image that was not kept (budget spent) is the reader's alone.
+  DecodedImageCache full(0);
+  const StatusOr<cv::Mat3b> first = full.Read(path, camera);
+  const StatusOr<cv::Mat3b> second = full.Read(path, camera);
+  ASSERT_TRUE(first.ok() && second.ok());
+  EXPECT_NE(first->data, second->data);
+  EXPECT_EQ(full.hits(), 0u);
 }
 
 TEST(DecodedImageCacheTest, KeptImagesAreCheckedAgainstEachCamera) {

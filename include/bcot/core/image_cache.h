@@ -26,8 +26,12 @@ class DecodedImageCache {
   explicit DecodedImageCache(size_t budget_bytes);
 
   // ReadCameraImage(path, camera) (image_io.h), answered from memory when `path` was kept. A
-  // decoded image is kept while it fits in what is left of the budget. Every returned image
-  // owns its pixels: writing into it never changes what the cache holds.
+  // decoded image is kept while it fits in what is left of the budget. A kept image's pixels are
+  // shared (cv::Mat's reference counting) by the cache and every image returned for `path`, so
+  // a reader must not write into them: every reader in the library takes frames as const (the
+  // tracker, the quality check). Copying a 960×768 frame in and out of the cache, with the page
+  // faults of its fresh buffers, cost about 3 % of a JPEG annotation's CPU
+  // (docs/notes/issue19_speed.md, "The decoded-image cache without copies").
   StatusOr<cv::Mat3b> Read(const std::string& path, const Camera& camera);
 
   size_t bytes() const;  // pixel bytes kept
