@@ -131,18 +131,30 @@ int Fail(const std::string& message) {
   return 1;
 }
 
-// The views of frame `f` of `sequence` (in `sequence_dir`), their images read into `images`
-// (which the views point into; the coverage masks instead when `coverage_mask`), each camera's
-// chroma sampling from `chroma`.
-bcot::Status ReadFrameViews(const bcot::Sequence& sequence, const std::string& sequence_dir,
-                            bool coverage_mask, int f,
+// Where the probe's images come from: the sequence's frames, or under --coverage-mask its
+// coverage masks drawn as images (CoverageAsImage).
+struct ProbeImages {
+  const bcot::Sequence& sequence;
+  std::string sequence_dir;
+  bool coverage_mask = false;
+
+  // The image of camera `v` (rig index) in frame `f`.
+  bcot::StatusOr<cv::Mat3b> Read(int v, int f) const {
+    return coverage_mask
+               ? CoverageAsImage(sequence_dir, sequence.rig[v].camera.name, f)
+               : bcot::ReadCameraImage(sequence.image_paths[v][f], sequence.rig[v].camera);
+  }
+};
+
+// The views of frame `f`, their images read from `source` into `images` (which the views point
+// into), each camera's chroma sampling from `chroma`.
+bcot::Status ReadFrameViews(const ProbeImages& source, int f,
                             const std::vector<bcot::ChromaSampling>& chroma,
                             std::vector<cv::Mat3b>* images, std::vector<bcot::FrameView>* views) {
+  const bcot::Sequence& sequence = source.sequence;
   images->clear();
   for (int v = 0; v < sequence.rig.size(); ++v) {
-    bcot::StatusOr<cv::Mat3b> image =
-        coverage_mask ? CoverageAsImage(sequence_dir, sequence.rig[v].camera.name, f)
-                      : bcot::ReadCameraImage(sequence.image_paths[v][f], sequence.rig[v].camera);
+    bcot::StatusOr<cv::Mat3b> image = source.Read(v, f);
     if (!image.ok()) return image.status();
     images->push_back(*image);
   }
@@ -436,14 +448,15 @@ int main(int argc, char** argv) {
     chroma[v] = *resolved;
   }
 
+  const ProbeImages images_of{*sequence, sequence_dir, coverage_mask};
+
   if (!solve_out.empty()) {
     const FrameProblem problem(caster, frame);
     std::vector<Eigen::Isometry3d> poses;
     for (int f = 0; f < frames; ++f) {
       std::vector<cv::Mat3b> images;
       std::vector<FrameView> views;
-      const Status read =
-          ReadFrameViews(*sequence, sequence_dir, coverage_mask, f, chroma, &images, &views);
+      const Status read = ReadFrameViews(images_of, f, chroma, &images, &views);
       if (!read.ok()) return Fail(read.message());
       Eigen::Isometry3d rig_from_objcentre = loaded->RigFromObjcentre(f);
       if (!problem.SolveEdges(views, &rig_from_objcentre)) {
@@ -472,8 +485,7 @@ int main(int argc, char** argv) {
     for (int f = 0; f < std::min(response_frames, sequence->num_frames); f += 5) {
       std::vector<cv::Mat3b> images;
       std::vector<FrameView> views;
-      const Status read =
-          ReadFrameViews(*sequence, sequence_dir, coverage_mask, f, chroma, &images, &views);
+      const Status read = ReadFrameViews(images_of, f, chroma, &images, &views);
       if (!read.ok()) return Fail(read.message());
       const StatusOr<ResponseEstimate> estimate =
           EstimateImageResponse(problem, views, loaded->RigFromObjcentre(f), estimation);
@@ -507,9 +519,7 @@ int main(int argc, char** argv) {
     std::array<Accumulator, 4> shift_bins{}, stable_bins{};
     int candidates = 0, measured = 0;
     for (int f = 0; f < frames; ++f) {
-      const StatusOr<cv::Mat3b> image =
-          coverage_mask ? CoverageAsImage(sequence_dir, camera.camera.name, f)
-                        : ReadCameraImage(sequence->image_paths[v][f], camera.camera);
+      const StatusOr<cv::Mat3b> image = images_of.Read(v, f);
       if (!image.ok()) return Fail(image.status().message());
       const Eigen::Isometry3d rig_from_objcentre = loaded->RigFromObjcentre(f);
       std::optional<ExposurePoses> exposure_poses;
