@@ -45,9 +45,12 @@ annotate() {  # sequence, velocity_prediction, extra options...
   [ -f "$out/rig_from_object.txt" ] && return 0  # finished before
   rm -rf "$out.partial"
   mkdir -p "$(dirname "$out")"
-  if ! "$bcot" annotate "$sequence" --out "$out.partial" --config "$config" --quiet \
-    --set tracker.velocity_prediction="$v" "$@" >/dev/null 2>"$out.log"; then
-    echo "annotate_seeds: $sequence (velocity_prediction $v) failed:" >&2
+  # Exit 3: written, but rejected by the quality check; its poses count like any others here.
+  local code=0
+  "$bcot" annotate "$sequence" --out "$out.partial" --config "$config" --quiet \
+    --set tracker.velocity_prediction="$v" "$@" >/dev/null 2>"$out.log" || code=$?
+  if [ "$code" -ne 0 ] && [ "$code" -ne 3 ]; then
+    echo "annotate_seeds: $sequence (velocity_prediction $v) failed (exit $code):" >&2
     cat "$out.log" >&2
     return 1
   fi
