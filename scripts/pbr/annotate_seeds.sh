@@ -4,7 +4,8 @@
 # (1, 0.999, 0.998, ...: each frame starts 0.1 % of the last motion nearer the last pose), which
 # changes nothing systematically but lets the tracking take another path through the frames.
 # The spread between such runs is the noise floor of a comparison of two settings
-# (docs/notes/issue12_evaluation_noise.md).
+# (docs/notes/issue12_evaluation_noise.md). The options under test therefore must not set
+# tracker.velocity_prediction themselves (refused; compare such a setting with single runs).
 #
 # Usage: scripts/pbr/annotate_seeds.sh SEQ_ROOT OUT_ROOT RUNS CONFIG [bcot annotate options...]
 #   writes OUT_ROOT/v<V>/<scene> per run and scene (<scene>: the sequence's name without the
@@ -26,6 +27,13 @@ if ! [[ "$runs" =~ ^[1-9][0-9]*$ ]] || [ "$runs" -gt 100 ]; then
 fi
 [ -x "$bcot" ] || { echo "annotate_seeds: $bcot is not an executable (set BCOT)" >&2; exit 2; }
 [ -f "$config" ] || { echo "annotate_seeds: config $config does not exist" >&2; exit 2; }
+for option in "$@"; do
+  if [[ "$option" == *tracker.velocity_prediction* ]]; then
+    echo "annotate_seeds: '$option': the runs differ by tracker.velocity_prediction, so the" \
+      "options under test cannot set it" >&2
+    exit 2
+  fi
+done
 
 sequences=()
 for dir in "$seq_root"/*/; do
