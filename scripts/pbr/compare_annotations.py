@@ -27,9 +27,10 @@ setting is compared with another, not one run's luck with another's.
 Usage:
   scripts/pbr/compare_annotations.py [--pbr-errors build/tests/bench/pbr_errors] SEQ_ROOT \\
       --a ANN_ROOT [ANN_ROOT ...] --b ANN_ROOT [ANN_ROOT ...] [--scenes NAME ...] [--batch 5]
-SEQ_ROOT holds the rendered sequences (a sequence may carry a hash suffix, `name-<hash>`, as
-scripts/pbr_synth.sh writes them); each ANN_ROOT holds one annotation per scene, named as the
-scene without the suffix. Needs numpy (scripts/setup.sh --with-blender).
+SEQ_ROOT holds the rendered sequences; each ANN_ROOT holds one annotation per sequence, named as
+the sequence (as `bcot batch` and scripts/pbr/annotate_seeds.sh write them) or as the sequence
+without the hash suffix scripts/pbr_synth.sh gives it (`name-<hash>`). Needs numpy
+(scripts/setup.sh --with-blender).
 """
 import argparse
 import glob
@@ -40,8 +41,13 @@ import sys
 import numpy as np
 
 
+# Columns of per_frame_errors' rows.
+ROTATION, ABS_XYZ, SIGNED_Y = 0, slice(1, 4), 5
+
+
 def per_frame_errors(pbr_errors, sequence, annotation):
-    """{camera: array of rows (rot, abs x, abs y, abs z, signed x, signed y, signed z)}"""
+    """{camera: array of rows (rot, abs x, abs y, abs z, signed x, signed y, signed z)}: the
+    per-frame lines of `pbr_errors --blocks 1` (frames, rot_max, the stds, worst, lost left out)."""
     run = subprocess.run([pbr_errors, sequence, annotation, "--blocks", "1"],
                          capture_output=True, text=True)
     if run.returncode != 0:
@@ -83,20 +89,24 @@ def scene_differences(a, b, batch):
     first = cameras[0]
     result = {}
     # Rotation: one pose per frame, the same angle in every camera.
-    d = b[first][:, 0] - a[first][:, 0]
-    mean, se = batch_mean_se(d, batch)
-    result["rotation"] = (a[first][:, 0].mean(), b[first][:, 0].mean(), mean, se)
+    ra, rb = a[first][:, ROTATION], b[first][:, ROTATION]
+    mean, se = batch_mean_se(rb - ra, batch)
+    result["rotation"] = (ra.mean(), rb.mean(), mean, se)
     # |t|: per frame the mean |error| over axes and cameras.
-    ta = np.mean([a[c][:, 1:4].mean(axis=1) for c in cameras], axis=0)
-    tb = np.mean([b[c][:, 1:4].mean(axis=1) for c in cameras], axis=0)
+    ta = np.mean([a[c][:, ABS_XYZ].mean(axis=1) for c in cameras], axis=0)
+    tb = np.mean([b[c][:, ABS_XYZ].mean(axis=1) for c in cameras], axis=0)
     mean, se = batch_mean_se(tb - ta, batch)
     result["|t|"] = (ta.mean(), tb.mean(), mean, se)
     # |bias y| per camera, then averaged; se from the signed y's paired difference.
-    bias_a = np.mean([abs(a[c][:, 5].mean()) for c in cameras])
-    bias_b = np.mean([abs(b[c][:, 5].mean()) for c in cameras])
-    ses = [batch_mean_se(b[c][:, 5] - a[c][:, 5], batch)[1] for c in cameras]
+    bias_a = np.mean([abs(a[c][:, SIGNED_Y].mean()) for c in cameras])
+    bias_b = np.mean([abs(b[c][:, SIGNED_Y].mean()) for c in cameras])
+    ses = [batch_mean_se(b[c][:, SIGNED_Y] - a[c][:, SIGNED_Y], batch)[1] for c in cameras]
     result["|bias y|"] = (bias_a, bias_b, bias_b - bias_a, float(np.sqrt(np.mean(np.square(ses)))))
     return result
+
+
+def cell(value_a, value_b, difference, se):
+    return f"{value_a:.4f} → {value_b:.4f} ({difference:+.4f} ± {se:.4f})"
 
 
 def main():
@@ -118,7 +128,7 @@ def main():
 
     scenes = args.scenes or sorted(
         name for name in os.listdir(args.a[0])
-        if os.path.isdir(os.path.join(args.a[0], name)) and not name.endswith(".partial"))
+        if os.path.isfile(os.path.join(args.a[0], name, "rig_from_object.txt")))
     columns = ["rotation", "|t|", "|bias y|"]
     totals = {c: [] for c in columns}
     print("| scene | " + " | ".join(f"{c} A → B (B − A ± se)" for c in columns) + " |")
@@ -140,19 +150,15 @@ def main():
             sides.append(mean_of_runs(runs))
         a, b = sides
         result = scene_differences(a, b, args.batch)
-        cells = []
         for c in columns:
-            va, vb, d, se = result[c]
-            totals[c].append((va, vb, d, se))
-            cells.append(f"{va:.4f} → {vb:.4f} ({d:+.4f} ± {se:.4f})")
+            totals[c].append(result[c])
+        cells = [cell(*result[c]) for c in columns]
         print(f"| {scene} | " + " | ".join(cells) + " |")
     cells = []
     for c in columns:
         values = np.array(totals[c])
-        n = len(values)
-        se = np.sqrt(np.sum(np.square(values[:, 3]))) / n
-        cells.append(f"{values[:, 0].mean():.4f} → {values[:, 1].mean():.4f} "
-                     f"({values[:, 2].mean():+.4f} ± {se:.4f})")
+        se = np.sqrt(np.sum(np.square(values[:, 3]))) / len(values)
+        cells.append(cell(*values[:, :3].mean(axis=0), se))
     print(f"| **mean of {len(scenes)}** | " + " | ".join(cells) + " |")
 
 

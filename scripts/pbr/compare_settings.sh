@@ -11,8 +11,10 @@
 #            [--runs 4] [--config configs/annotate.yaml] --a "OPTIONS" --b "OPTIONS"
 #   OPTIONS: `bcot annotate` options of that setting, split at spaces ("" = the config as it is),
 #   e.g. --a "" --b "--set edge.iterations=50". Annotations are kept under OUT/<a|b>/ and a rerun
-#   with the same OUT resumes them: use a new OUT for other options.
-# Environment: BCOT (default build/bcot). Needs numpy (scripts/setup.sh --with-blender).
+#   with the same OUT resumes them (`bcot batch` skips a sequence whose DONE matches its config
+#   and options, so other options in the same OUT are annotated anew).
+# Environment: BCOT (default build/bcot), BCOT_PBR_ERRORS (default build/tests/bench/pbr_errors).
+# Needs numpy (scripts/setup.sh --with-blender).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 seq_root=out/pbr out=out/compare_settings runs=4 config=configs/annotate.yaml
@@ -36,8 +38,9 @@ fi
 pbr_errors=${BCOT_PBR_ERRORS:-build/tests/bench/pbr_errors}
 [ -x "$pbr_errors" ] || { echo "compare_settings: $pbr_errors not built (scripts/build.sh)" >&2; exit 2; }
 
-# The every-second-frame copies, made once.
+# The sets compared: the sequences as rendered, and copies with every second frame, made once.
 every2="$out/every2"
+declare -A roots=([full]=$seq_root [every2]=$every2)
 mkdir -p "$every2"
 for dir in "$seq_root"/*/; do
   dir=${dir%/}
@@ -52,17 +55,14 @@ for side in a b; do
   options_var=options_$side
   read -ra options <<<"${!options_var}"
   for set in full every2; do
-    root=$seq_root
-    [ "$set" = every2 ] && root=$every2
-    scripts/pbr/annotate_seeds.sh "$root" "$out/$side/$set" "$runs" "$config" "${options[@]}"
+    scripts/pbr/annotate_seeds.sh "${roots[$set]}" "$out/$side/$set" "$runs" "$config" \
+      "${options[@]}"
   done
 done
 
 for set in full every2; do
-  root=$seq_root
-  [ "$set" = every2 ] && root=$every2
   echo
   echo "== $set: A = '$options_a', B = '$options_b' ($runs runs each, $config)"
-  /usr/bin/python3 scripts/pbr/compare_annotations.py --pbr-errors "$pbr_errors" "$root" \
+  /usr/bin/python3 scripts/pbr/compare_annotations.py --pbr-errors "$pbr_errors" "${roots[$set]}" \
     --a "$out"/a/"$set"/v* --b "$out"/b/"$set"/v*
 done
