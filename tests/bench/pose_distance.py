@@ -46,7 +46,8 @@ def main():
             print(f"{frame} {rotations[-1]:.4f} {distances[-1]:.4f}")
     if not rotations:
         sys.exit("pose_distance: no frame in both")
-    print(f"frames {len(rotations)}  rotation mean {np.mean(rotations):.4f} max {np.max(rotations):.4f} deg"
+    print(f"frames {len(rotations)}"
+          f"  rotation mean {np.mean(rotations):.4f} max {np.max(rotations):.4f} deg"
           f"  origin mean {np.mean(distances):.4f} max {np.max(distances):.4f} mm")
 
 

@@ -9,11 +9,12 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
-#include <opencv2/imgcodecs.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bcot/annotate/pose_scorer.h"
+#include "bcot/core/image_io.h"
 #include "bcot/core/pose_io.h"
 #include "bcot/core/sequence.h"
 #include "bcot/render/mesh.h"
@@ -53,10 +54,10 @@ int main(int argc, char** argv) {
   for (int frame = 0; frame < frames; ++frame) {
     std::vector<cv::Mat3b> images;
     for (int view = 0; view < sequence->rig.size(); ++view) {
-      const std::string& path = sequence->image_paths[view][frame];
-      cv::Mat3b image = cv::imread(path, cv::IMREAD_COLOR);
-      if (image.empty()) return fail("cannot read " + path);
-      images.push_back(image);
+      auto image =
+          bcot::ReadCameraImage(sequence->image_paths[view][frame], sequence->rig[view].camera);
+      if (!image.ok()) return fail(image.status().message());
+      images.push_back(std::move(image).value());
     }
     const bcot::PoseScorer scorer(caster, sequence->rig, images, bcot::PoseScorerOptions());
     std::printf("%d", frame);
