@@ -185,6 +185,17 @@ void DeclareLines(OptionSchema<AnnotateOptions>* s) {
                    ? "must be false unless cost.energy is sparse"
                    : "";
       });
+  s->Add(
+       "lines.viewpoint_model_two_views",
+       [](auto& o) -> auto& { return o.tracker.viewpoint_model_for_two_views; }, "",
+       "tracked frames that two or more cameras see: region rounds with the sparse energy along "
+       "the sparse viewpoint model and colours learned along its contour, no render; frames one "
+       "camera sees keep cost.energy and color.samples (docs/sparse_viewpoint_model.md)")
+      .Check([](const AnnotateOptions& o) {
+        return o.tracker.viewpoint_model_for_two_views && o.tracker.frame.lines_from_viewpoint_model
+                   ? "must be false when lines.viewpoint_model is true (the model on every frame)"
+                   : "";
+      });
 }
 
 void DeclareEdge(OptionSchema<AnnotateOptions>* s) {

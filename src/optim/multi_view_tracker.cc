@@ -13,6 +13,18 @@
 
 namespace bcot {
 
+namespace {
+
+// The frame options of the frames two views see (viewpoint_model_for_two_views).
+FrameProblemOptions TwoViewFrameOptions(const FrameProblemOptions& frame) {
+  FrameProblemOptions two_views = frame;
+  two_views.energy = RegionEnergy::kSparse;
+  two_views.lines_from_viewpoint_model = true;
+  return two_views;
+}
+
+}  // namespace
+
 Status MultiViewTrackerOptions::Validate() const {
   std::vector<std::string> violations;
   const Status frame_status = frame.Validate();
@@ -22,6 +34,18 @@ Status MultiViewTrackerOptions::Validate() const {
   if (color_samples == ColorSampleSource::kViewpointModel && !frame.lines_from_viewpoint_model) {
     violations.push_back(
         "color_samples = viewpoint_model, needs frame.lines_from_viewpoint_model = true");
+  }
+  if (viewpoint_model_for_two_views) {
+    if (frame.lines_from_viewpoint_model) {
+      violations.push_back(
+          "viewpoint_model_for_two_views = true, needs frame.lines_from_viewpoint_model = false "
+          "(which applies the model to every frame)");
+    } else {
+      const Status two_view_status = TwoViewFrameOptions(frame).Validate();
+      if (!two_view_status.ok()) {
+        violations.push_back("the frames two views see: " + two_view_status.message());
+      }
+    }
   }
   if (!(velocity_prediction >= 0.0 && velocity_prediction <= 1.0)) {
     violations.push_back(
@@ -57,7 +81,7 @@ StatusOr<std::unique_ptr<MultiViewTracker>> MultiViewTracker::Create(
                                                view.camera.name, view.weight));
     }
   }
-  if (!options.frame.lines_from_viewpoint_model) {
+  if (!options.frame.lines_from_viewpoint_model && !options.viewpoint_model_for_two_views) {
     viewpoint_model = nullptr;
   } else if (viewpoint_model == nullptr) {
     viewpoint_model = std::make_shared<const SparseViewpointModel>(
@@ -107,6 +131,10 @@ void MultiViewTracker::UseImageResponse(const ImageResponse& response) {
       std::make_unique<FrameProblem>(caster_, resolved.frame, symmetry_, viewpoint_model_.get());
   bootstrap_problem_ = std::make_unique<FrameProblem>(caster_, BootstrapFrameOptions(resolved),
                                                       symmetry_, viewpoint_model_.get());
+  if (options_.viewpoint_model_for_two_views) {
+    two_view_problem_ = std::make_unique<FrameProblem>(caster_, TwoViewFrameOptions(resolved.frame),
+                                                       symmetry_, viewpoint_model_.get());
+  }
 }
 
 Status MultiViewTracker::CheckImages(const std::vector<cv::Mat3b>& images) const {
@@ -126,14 +154,15 @@ Status MultiViewTracker::CheckImages(const std::vector<cv::Mat3b>& images) const
 }
 
 void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
-                                   const Eigen::Isometry3d& rig_from_objcentre, bool fresh) {
+                                   const Eigen::Isometry3d& rig_from_objcentre, bool fresh,
+                                   ColorSampleSource samples) {
   const Eigen::Isometry3d objcentre_from_template = caster_.mesh().objcentre_from_template();
   // Each view updates only its own models: the views are learned concurrently.
   tbb::parallel_for(size_t{0}, views_.size(), [&](size_t v) {
     if (fresh) color_models_[v] = ViewColorModels(options_.color, caster_.mesh().diameter());
     const Eigen::Isometry3d cam_from_template =
         views_[v].cam_from_rig * rig_from_objcentre * objcentre_from_template;
-    if (options_.color_samples == ColorSampleSource::kViewpointModel) {
+    if (samples == ColorSampleSource::kViewpointModel) {
       color_models_[v].UpdateAlongContour(
           images[v], viewpoint_model_->Project(viewpoint_model_->Nearest(cam_from_template),
                                                views_[v].camera, cam_from_template));
@@ -146,6 +175,16 @@ void MultiViewTracker::LearnColors(const std::vector<cv::Mat3b>& images,
             : RenderSilhouetteMask(caster_, views_[v].camera, cam_from_template);
     color_models_[v].Update(images[v], silhouette);
   });
+}
+
+bool MultiViewTracker::SeenByTwoViews(const Eigen::Isometry3d& rig_from_objcentre) const {
+  int seen = 0;
+  for (const TrackedView& view : views_) {
+    if (view.weight == 0.0) continue;
+    const Eigen::Vector3d centre_in_cam = view.cam_from_rig * rig_from_objcentre.translation();
+    if (centre_in_cam.z() > 0.0 && view.camera.InImage(view.camera.Project(centre_in_cam))) ++seen;
+  }
+  return seen >= 2;
 }
 
 std::vector<FrameView> MultiViewTracker::FrameViews(const std::vector<cv::Mat3b>& images,
@@ -192,7 +231,7 @@ Status MultiViewTracker::Reset(const std::vector<cv::Mat3b>& images,
                                const Eigen::Isometry3d& rig_from_objcentre) {
   BCOT_RETURN_IF_ERROR(CheckImages(images));
   ResolveImageResponse(images, rig_from_objcentre);
-  LearnColors(images, rig_from_objcentre, /*fresh=*/true);
+  LearnColors(images, rig_from_objcentre, /*fresh=*/true, options_.color_samples);
   previous_rig_from_objcentre_.reset();
   return Status::Ok();
 }
@@ -207,7 +246,7 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
   const bool has_refinement_models = color_models_.front().refine() != nullptr;
   for (int pass = 0; pass < options_.bootstrap_passes; ++pass) {
     const Eigen::Isometry3d before = *rig_from_objcentre;
-    LearnColors(images, *rig_from_objcentre, /*fresh=*/true);
+    LearnColors(images, *rig_from_objcentre, /*fresh=*/true, options_.color_samples);
     summary =
         Solve(*bootstrap_problem_, images, rig_from_objcentre, linearisations, /*refine=*/false);
     if (!summary.usable()) break;
@@ -220,7 +259,7 @@ StatusOr<FrameSummary> MultiViewTracker::Initialize(
     }
   }
   if (has_refinement_models && summary.usable()) {
-    LearnColors(images, *rig_from_objcentre, /*fresh=*/true);
+    LearnColors(images, *rig_from_objcentre, /*fresh=*/true, options_.color_samples);
     summary =
         Solve(*bootstrap_problem_, images, rig_from_objcentre, linearisations, /*refine=*/true);
   }
@@ -245,11 +284,13 @@ StatusOr<FrameSummary> MultiViewTracker::Track(const std::vector<cv::Mat3b>& ima
     *rig_from_objcentre =
         PredictPose(*previous_rig_from_objcentre_, last, options_.velocity_prediction);
   }
-  FrameSummary summary =
-      Solve(*problem_, images, rig_from_objcentre, linearisations, /*refine=*/true);
+  const bool two_views = two_view_problem_ != nullptr && SeenByTwoViews(*rig_from_objcentre);
+  FrameSummary summary = Solve(two_views ? *two_view_problem_ : *problem_, images,
+                               rig_from_objcentre, linearisations, /*refine=*/true);
   if (summary.usable()) {
     HoldSymmetryAngle(last, rig_from_objcentre);
-    LearnColors(images, *rig_from_objcentre, /*fresh=*/false);
+    LearnColors(images, *rig_from_objcentre, /*fresh=*/false,
+                two_views ? ColorSampleSource::kViewpointModel : options_.color_samples);
     previous_rig_from_objcentre_ = last;
   } else {
     // No estimate on this frame: stay at the last one and forget the velocity.

@@ -106,7 +106,10 @@ void BM_Track(benchmark::State& state, const std::string& config,
   const AnnotateOptions options =
       OrDie(ReadAnnotateOptions(std::string(BCOT_SOURCE_DIR) + "/configs/" + config, overrides));
   const std::shared_ptr<const SparseViewpointModel> viewpoint_model =
-      options.tracker.frame.lines_from_viewpoint_model ? TheViewpointModel() : nullptr;
+      options.tracker.frame.lines_from_viewpoint_model ||
+              options.tracker.viewpoint_model_for_two_views
+          ? TheViewpointModel()
+          : nullptr;
   const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, 1);
   std::vector<TrackedView> views;
   for (int c = 0; c < 2; ++c) {
@@ -140,13 +143,15 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   // The configs as they are, then with the sparse region energy, rendered or from the sparse
   // viewpoint model (sparse_viewpoint_model.h), the colour models learned from the rendered
-  // silhouette or along the model's contour.
+  // silhouette or along the model's contour; last, the model on the frames two views see (all
+  // of this benchmark's: the energy and colours of the one before it, frame 0 as configured).
   const std::vector<std::pair<std::string, std::vector<std::string>>> variants = {
       {"", {}},
       {"/sparse", {"cost.energy=sparse"}},
       {"/sparse_viewpoints", {"cost.energy=sparse", "lines.viewpoint_model=true"}},
       {"/sparse_viewpoints_colors",
-       {"cost.energy=sparse", "lines.viewpoint_model=true", "color.samples=viewpoint_model"}}};
+       {"cost.energy=sparse", "lines.viewpoint_model=true", "color.samples=viewpoint_model"}},
+      {"/viewpoint_model_two_views", {"lines.viewpoint_model_two_views=true"}}};
   for (const std::string config : {"track.yaml", "annotate.yaml"}) {
     for (const auto& [suffix, overrides] : variants) {
       benchmark::RegisterBenchmark(

@@ -166,6 +166,61 @@ TEST_F(MultiViewTrackerTest, TracksASmoothMotion) {
   }
 }
 
+TEST(MultiViewTrackerOptionsTest, ModelForTwoViewsExcludesTheModelOnEveryFrame) {
+  MultiViewTrackerOptions options;
+  options.viewpoint_model_for_two_views = true;
+  EXPECT_TRUE(options.Validate().ok()) << options.Validate().message();
+  options.frame.energy = RegionEnergy::kSparse;
+  options.frame.lines_from_viewpoint_model = true;
+  test::ExpectErrorNaming(options.Validate(), StatusCode::kInvalidConfig,
+                          {"viewpoint_model_for_two_views = true, needs "
+                           "frame.lines_from_viewpoint_model = false"});
+}
+
+// viewpoint_model_for_two_views: where both views see the object, the tracked frames are solved
+// along the sparse viewpoint model (other poses than the configured energy's, as accurate);
+// where only one view has weight, the tracker is the configured one, bit for bit.
+TEST_F(MultiViewTrackerTest, ModelForTwoViewsIsUsedOnlyWhereTwoViewsSeeTheObject) {
+  const test::BinocularScene scene;
+  const Eigen::Vector3d axis = Eigen::Vector3d(0.3, 1.0, -0.2).normalized();
+  std::vector<Eigen::Isometry3d> truths = {scene.rig_from_objcentre};
+  std::vector<std::vector<cv::Mat3b>> images = {RenderViews(*caster_, scene, truths[0], 50)};
+  for (int frame = 1; frame <= 4; ++frame) {
+    Eigen::Isometry3d truth = truths.back();
+    truth.linear() = truth.linear() * ExpSO3(axis * 2.0 * kPi / 180.0);
+    truth.translation() += Eigen::Vector3d(4.0, -2.0, 1.0);
+    truths.push_back(truth);
+    images.push_back(RenderViews(*caster_, scene, truth, 50 + 2 * frame));
+  }
+  const auto track = [&](bool model_for_two_views, double weight1) {
+    MultiViewTrackerOptions options;
+    options.viewpoint_model_for_two_views = model_for_two_views;
+    std::vector<TrackedView> views = {{scene.camera0, scene.cam0_from_rig, 1.0},
+                                      {scene.camera1, scene.cam1_from_rig, weight1}};
+    StatusOr<std::unique_ptr<MultiViewTracker>> tracker =
+        MultiViewTracker::Create(*caster_, std::move(views), options);
+    BCOT_CHECK(tracker.ok());
+    Eigen::Isometry3d pose = truths[0];
+    BCOT_CHECK((*tracker)->Reset(images[0], pose).ok());
+    std::vector<Eigen::Isometry3d> poses;
+    for (size_t frame = 1; frame < images.size(); ++frame) {
+      const StatusOr<FrameSummary> summary = (*tracker)->Track(images[frame], &pose);
+      BCOT_CHECK(summary.ok() && summary->usable());
+      poses.push_back(pose);
+    }
+    return poses;
+  };
+  const std::vector<Eigen::Isometry3d> rendered = track(false, 1.0);
+  const std::vector<Eigen::Isometry3d> model = track(true, 1.0);
+  const std::vector<Eigen::Isometry3d> one_view = track(false, 0.0);
+  const std::vector<Eigen::Isometry3d> one_view_model = track(true, 0.0);
+  for (size_t i = 0; i < model.size(); ++i) {
+    EXPECT_THAT(model[i], test::PoseNear(truths[i + 1], 0.2, 0.2)) << "frame " << i + 1;
+    EXPECT_FALSE(model[i].matrix() == rendered[i].matrix()) << "frame " << i + 1;
+    EXPECT_TRUE(one_view_model[i].matrix() == one_view[i].matrix()) << "frame " << i + 1;
+  }
+}
+
 TEST(PredictPoseTest, ContinuesAConstantMotionAboutTheObjectCentre) {
   Eigen::Isometry3d before = Eigen::Isometry3d::Identity();
   before.linear() = ExpSO3(Eigen::Vector3d(0.3, -0.2, 0.9));

@@ -21,7 +21,9 @@
 //                          Initialize, which forget the velocity) with the current models, then
 //                          blend the models at the result (RBOT's temporal update). Real handheld
 //                          motion reaches 40 mm and 25° per frame at 30 fps (BCOT), beyond what
-//                          one linearised band can capture from the last pose.
+//                          one linearised band can capture from the last pose. With
+//                          viewpoint_model_for_two_views, a frame two views see is solved
+//                          along the sparse viewpoint model instead (SeenByTwoViews).
 //
 // Image response. With frame.edge.lines.response = kAuto (and the edge stage on) the first
 // Reset, or Initialize that solves, estimates the cameras' response from its frame at its pose
@@ -62,6 +64,15 @@ struct MultiViewTrackerOptions {
   // renders the object unless the edge stage or the quality check does (issue 19; precision and
   // time in docs/sparse_viewpoint_model.md).
   ColorSampleSource color_samples = ColorSampleSource::kSilhouette;
+  // Tracked frames that two or more views see (SeenByTwoViews) solve their region rounds with
+  // the sparse energy along the sparse viewpoint model and learn their colours along its contour
+  // (the options above would say energy sparse, frame.lines_from_viewpoint_model and
+  // kViewpointModel), without a render; the edge stage then places the contour from the
+  // rendered silhouette. Frames that one view sees, and frame 0's bootstrap, keep `frame` and
+  // `color_samples`: with one view the model's contour alone sets the depth, and it loses
+  // frames there (docs/sparse_viewpoint_model.md). Needs frame.lines_from_viewpoint_model =
+  // false (which applies the model to every frame).
+  bool viewpoint_model_for_two_views = false;
   // Fraction of the last inter-frame motion (rotation about the object centre, displacement of
   // the centre, both in the rig frame) added to the last pose to start the next solve; in
   // [0, 1]. 0 = start at the last pose, 1 = constant velocity.
@@ -139,9 +150,10 @@ class MultiViewTracker {
   Status CheckImages(const std::vector<cv::Mat3b>& images) const;
   // Updates every view's colour models at the pose; `fresh` replaces the models first.
   void LearnColors(const std::vector<cv::Mat3b>& images,
-                   const Eigen::Isometry3d& rig_from_objcentre, bool fresh);
-  // One joint solve by `problem` (problem_ or bootstrap_problem_); `refine` lets the
-  // full-resolution rounds use the refinement models.
+                   const Eigen::Isometry3d& rig_from_objcentre, bool fresh,
+                   ColorSampleSource samples);
+  // One joint solve by `problem` (problem_, bootstrap_problem_ or two_view_problem_); `refine` lets
+  // the full-resolution rounds use the refinement models.
   FrameSummary Solve(const FrameProblem& problem, const std::vector<cv::Mat3b>& images,
                      Eigen::Isometry3d* rig_from_objcentre,
                      std::vector<ViewLinearisation>* linearisations, bool refine);
@@ -152,6 +164,9 @@ class MultiViewTracker {
   // the axis at all. A no-op for other objects.
   void HoldSymmetryAngle(const Eigen::Isometry3d& reference,
                          Eigen::Isometry3d* rig_from_objcentre) const;
+  // Whether two or more views of weight > 0 see the object centre of `rig_from_objcentre` in
+  // front of them and inside their image (viewpoint_model_for_two_views).
+  bool SeenByTwoViews(const Eigen::Isometry3d& rig_from_objcentre) const;
   // The frame's views for a FrameProblem (colour models by `refine` as in Solve).
   std::vector<FrameView> FrameViews(const std::vector<cv::Mat3b>& images, bool refine) const;
   // Decodes edges with `response` from now on (rebuilds the frame problems).
@@ -166,14 +181,16 @@ class MultiViewTracker {
   std::vector<TrackedView> views_;
   MultiViewTrackerOptions options_;
   std::optional<RotationalSymmetry> symmetry_;  // O_t
-  // With options_.frame.lines_from_viewpoint_model, else null.
+  // With options_.frame.lines_from_viewpoint_model or viewpoint_model_for_two_views, else null.
   std::shared_ptr<const SparseViewpointModel> viewpoint_model_;
   ImageResponse image_response_;
   std::optional<StatusOr<ResponseEstimate>> response_estimate_;
   // The frame problems of options_ with image_response_ (resolved) as the edge response.
   std::unique_ptr<FrameProblem> problem_;
   std::unique_ptr<FrameProblem> bootstrap_problem_;  // problem_ with bootstrap_rounds
-  std::vector<ViewColorModels> color_models_;        // per view
+  // With viewpoint_model_for_two_views: problem_ with the sparse energy along the model.
+  std::unique_ptr<FrameProblem> two_view_problem_;
+  std::vector<ViewColorModels> color_models_;  // per view
   // The estimate of the frame before the last one, when Track produced both.
   std::optional<Eigen::Isometry3d> previous_rig_from_objcentre_;
 };
