@@ -82,8 +82,9 @@ def interval_residual(model, centre, q, s):
     return np.sign(model - centre) * np.sqrt(np.maximum(2.0 * (log_pmax - log_p), 0.0))
 
 
-def lm(residual, p0, steps, iters=40):
-    """Levenberg-Marquardt with central-difference Jacobians; returns (p, converged)."""
+def lm(residual, p0, steps, iters=40, watch=1):
+    """Levenberg-Marquardt with central-difference Jacobians; stops when the cost or parameter
+    `watch` (the edge's offset) no longer moves; returns (p, converged)."""
     p = np.array(p0, float)
     r = residual(p)
     cost = r @ r
@@ -107,7 +108,7 @@ def lm(residual, p0, steps, iters=40):
             lam *= 4
         if not improved:
             return p, True
-        if abs(cost - cost_new) < 1e-10 * max(cost, 1e-12) or abs(delta[1]) < 1e-6:
+        if abs(cost - cost_new) < 1e-10 * max(cost, 1e-12) or abs(delta[watch]) < 1e-6:
             cost = cost_new
             return p, True
         cost = cost_new
