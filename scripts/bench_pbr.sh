@@ -6,8 +6,9 @@
 # Default: the bench scenes of configs/pbr/ (bunny plastic, spool dark + JPEG, pinion metal
 # with a moving key light + JPEG, large bright bunny in soft light + JPEG, small glossy and small
 # diffuse bunny turning fast + JPEG, bunny turning 5–8° per frame with motion blur + JPEG, the
-# plastic bunny with a thumb-sized occluder sweeping across it in cam0) and
-# the control bunny_plastic_light_below (the key light from below).
+# plastic bunny with a thumb-sized occluder sweeping across it in cam0, the plastic bunny again as
+# JPEG 90 4:2:0: a large saturated object, the hidden set's format) and the control
+# bunny_plastic_light_below (the key light from below).
 # For each scene spec: renders the sequence with scripts/pbr_synth.sh into out/pbr/<name>-<hash>
 # (hash of the resolved spec and the generator's scripts; an existing render is reused), checks
 # its ground truth (tests/bench/pbr_gt_check: Blender mask vs Embree, and the boundary contrast
@@ -34,7 +35,7 @@ if [ ${#specs[@]} -eq 0 ]; then
          configs/pbr/pinion_metal_moving_light.json configs/pbr/bunny_bright_soft.json
          configs/pbr/bunny_plastic_light_below.json configs/pbr/bunny_small_glossy_fast.json
          configs/pbr/bunny_small_diffuse_fast.json configs/pbr/bunny_fast_blur.json
-         configs/pbr/bunny_hand_occluder.json)
+         configs/pbr/bunny_hand_occluder.json configs/pbr/bunny_plastic_jpeg.json)
 fi
 py=/usr/bin/python3
 nice cmake --build build -j1 --target bcot pbr_errors pbr_gt_check >/dev/null
