@@ -7,7 +7,7 @@
 # with a moving key light + JPEG, large bright bunny in soft light + JPEG, small glossy and small
 # diffuse bunny turning fast + JPEG, bunny turning 5–8° per frame with motion blur + JPEG, the
 # plastic bunny with a thumb-sized occluder sweeping across it in cam0, the plastic bunny again as
-# JPEG 90 4:2:0: a large saturated object, the hidden set's format) and the control
+# JPEG 90 4:2:0: a large saturated object in issue 12's hidden set's format) and the control
 # bunny_plastic_light_below (the key light from below).
 # For each scene spec: renders the sequence with scripts/pbr_synth.sh into out/pbr/<name>-<hash>
 # (hash of the resolved spec and the generator's scripts; an existing render is reused), checks
