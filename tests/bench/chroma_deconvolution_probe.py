@@ -23,21 +23,12 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, '..', '..', 'scripts', 'pbr'))
-from jpeg_block_edge_fit import lm, phi  # noqa: E402
+from edge_sliver_fit import model_a as step_model  # noqa: E402
+from jpeg_block_edge_fit import lm  # noqa: E402
 import jpeg_variants as jv  # noqa: E402
 import pbr_common as pc  # noqa: E402
 
 S = np.arange(-16, 17) * 0.25  # the dump's sample offsets (px)
-
-
-def ramp(z):
-    return z * phi(z) + np.exp(-0.5 * z * z) / np.sqrt(2 * np.pi)
-
-
-def step_model(p, s):
-    w = np.exp(np.clip(p[4], -4, 2))
-    z = (s - p[3]) / w
-    return p[0] + p[1] * s + p[2] * phi(z) + p[5] * w * ramp(z)
 
 
 def fit_mean(profile, direction):
