@@ -316,6 +316,22 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
       "edge stage takes the move off: auto (each camera's first frame: a JPEG's header, else "
       "4:4:4), or set (frames converted from 4:2:0 JPEG to PNG keep its damage)");
   s->Add(
+      "edge.chroma_restoration", [](auto& o) -> auto& { return o.chroma_restoration.enabled; },
+      "",
+      "frames with subsampled chroma get it back at full resolution from their luma before "
+      "tracking (the edge stage then measures them as 4:4:4); false = the decoded frames and the "
+      "edge stage's per-line correction");
+  s->Add(
+       "edge.chroma_restoration_radius_px",
+       [](auto& o) -> auto& { return o.chroma_restoration.radius_px; }, "px",
+       "window radius of the chroma restoration's local fits")
+      .Range(Closed(1, 16));
+  s->Add(
+       "edge.chroma_restoration_degree",
+       [](auto& o) -> auto& { return o.chroma_restoration.degree; }, "",
+       "degree of the chroma restoration's polynomial in luma")
+      .Range(Closed(1, 4));
+  s->Add(
        "edge.gamma", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.response.gamma; }, "",
        "exponent of edge.response: gamma, linear = (code / 255)^gamma")
       .Range(Closed(ImageResponse::kMinGamma, ImageResponse::kMaxGamma));
@@ -579,7 +595,8 @@ OptionSchema<AnnotateOptions>* BuildAnnotateOptionSchema() {
 // there but not declared here still stops a bad config, naming `source_name`.
 Status LayerChecks(const AnnotateOptions& options, const std::string& source_name) {
   for (const Status& status : {options.tracker.Validate(), options.window.Validate(),
-                               options.symmetry.detection.Validate()}) {
+                               options.symmetry.detection.Validate(),
+                               options.chroma_restoration.Validate()}) {
     if (!status.ok()) return Status::InvalidConfig(source_name + ": " + status.message());
   }
   return Status::Ok();

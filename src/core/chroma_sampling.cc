@@ -87,4 +87,10 @@ cv::Mat3d SimulateChromaSubsampling(const cv::Mat3d& codes, const ChromaSampling
   return out;
 }
 
+void ChromaSamplingPath(const ChromaSampling& sampling, cv::Mat1d* plane) {
+  assert(sampling.simulated());
+  std::vector<double> work;
+  ThroughCodec(sampling, plane, &work);
+}
+
 }  // namespace bcot

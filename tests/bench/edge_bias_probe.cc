@@ -137,12 +137,17 @@ struct ProbeImages {
   const bcot::Sequence& sequence;
   std::string sequence_dir;
   bool coverage_mask = false;
+  const bcot::AnnotateOptions& options;
+  std::vector<bcot::ChromaSampling> stored_chroma;  // per rig camera, as its files store it
 
-  // The image of camera `v` (rig index) in frame `f`.
+  // The image of camera `v` (rig index) in frame `f`, prepared as the annotation prepares it
+  // (PrepareTrackedImage: restored chroma).
   bcot::StatusOr<cv::Mat3b> Read(int v, int f) const {
-    return coverage_mask
-               ? CoverageAsImage(sequence_dir, sequence.rig[v].camera.name, f)
-               : bcot::ReadCameraImage(sequence.image_paths[v][f], sequence.rig[v].camera);
+    if (coverage_mask) return CoverageAsImage(sequence_dir, sequence.rig[v].camera.name, f);
+    bcot::StatusOr<cv::Mat3b> image =
+        bcot::ReadCameraImage(sequence.image_paths[v][f], sequence.rig[v].camera);
+    if (!image.ok()) return image;
+    return bcot::PrepareTrackedImage(*image, stored_chroma[v], options);
   }
 };
 
@@ -441,14 +446,16 @@ int main(int argc, char** argv) {
   // Each camera's chroma sampling as the annotation resolves it (edge.chroma_sampling); the
   // coverage is full-resolution colour.
   std::vector<ChromaSampling> chroma(sequence->rig.size(), ChromaSampling::Full());
+  std::vector<ChromaSampling> stored_chroma = chroma;
   for (int v = 0; v < sequence->rig.size() && !coverage_mask; ++v) {
     const StatusOr<ChromaSampling> resolved =
         ResolveChromaSampling(*sequence, v, options->chroma_sampling);
     if (!resolved.ok()) return Fail(resolved.status().message());
-    chroma[v] = *resolved;
+    stored_chroma[v] = *resolved;
+    chroma[v] = TrackedChromaSampling(*resolved, *options);
   }
 
-  const ProbeImages images_of{*sequence, sequence_dir, coverage_mask};
+  const ProbeImages images_of{*sequence, sequence_dir, coverage_mask, *options, stored_chroma};
 
   if (!solve_out.empty()) {
     const FrameProblem problem(caster, frame);

@@ -48,4 +48,10 @@ struct ChromaSampling {
 // `sampling.simulated()` must hold; with 1, 1 the codes come back clamped.
 cv::Mat3d SimulateChromaSubsampling(const cv::Mat3d& codes, const ChromaSampling& sampling);
 
+// One plane through the codec's chroma path in place: each block's mean, then libjpeg's fancy
+// upsampling back to full resolution (linear; what SimulateChromaSubsampling does to Cb and Cr).
+// `plane` is a whole image's or a patch's as for SimulateChromaSubsampling;
+// `sampling.simulated()` must hold.
+void ChromaSamplingPath(const ChromaSampling& sampling, cv::Mat1d* plane);
+
 }  // namespace bcot

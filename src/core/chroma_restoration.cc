@@ -1,0 +1,179 @@
+#include "bcot/core/chroma_restoration.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
+
+#include "bcot/core/violations.h"
+
+namespace bcot {
+
+Status ChromaRestorationOptions::Validate() const {
+  std::vector<std::string> violations;
+  if (radius_px < 1 || radius_px > 16) violations.push_back("radius_px must be in [1, 16]");
+  if (degree < 1 || degree > 4) violations.push_back("degree must be in [1, 4]");
+  if (!(ridge_luma_codes2 > 0.0)) violations.push_back("ridge_luma_codes2 must be > 0");
+  if (!(misfit_floor_codes2 > 0.0)) violations.push_back("misfit_floor_codes2 must be > 0");
+  return internal::JoinViolations("chroma restoration", violations);
+}
+
+namespace {
+
+constexpr int kMaxDegree = 4;
+// Luma features f_k = ((Y − 128) / kLumaScale)^k keep the powers of order one.
+constexpr double kLumaScale = 64.0;
+
+// Solves M·a = r for a symmetric positive definite n×n M (n <= kMaxDegree; M's lower triangle
+// is read and overwritten by its Cholesky factor).
+void CholeskySolve(int n, double m[kMaxDegree][kMaxDegree], const double* r, double* a) {
+  for (int j = 0; j < n; ++j) {
+    double d = m[j][j];
+    for (int k = 0; k < j; ++k) d -= m[j][k] * m[j][k];
+    d = std::sqrt(std::max(d, 1e-300));
+    m[j][j] = d;
+    for (int i = j + 1; i < n; ++i) {
+      double v = m[i][j];
+      for (int k = 0; k < j; ++k) v -= m[i][k] * m[j][k];
+      m[i][j] = v / d;
+    }
+  }
+  double z[kMaxDegree];
+  for (int i = 0; i < n; ++i) {
+    double v = r[i];
+    for (int k = 0; k < i; ++k) v -= m[i][k] * z[k];
+    z[i] = v / m[i][i];
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    double v = z[i];
+    for (int k = i + 1; k < n; ++k) v -= m[k][i] * a[k];
+    a[i] = v / m[i][i];
+  }
+}
+
+// The mean over each pixel's (2r + 1)² window, the image mirrored at its border.
+cv::Mat1f WindowMean(const cv::Mat1f& image, int radius) {
+  cv::Mat1f mean;
+  cv::boxFilter(image, mean, CV_32F, cv::Size(2 * radius + 1, 2 * radius + 1), cv::Point(-1, -1),
+                true, cv::BORDER_REFLECT);
+  return mean;
+}
+
+cv::Mat1f Product(const cv::Mat1f& a, const cv::Mat1f& b) {
+  cv::Mat1f product;
+  cv::multiply(a, b, product);
+  return product;
+}
+
+}  // namespace
+
+cv::Mat3b RestoreSubsampledChroma(const cv::Mat3b& decoded, const ChromaSampling& sampling,
+                                  const ChromaRestorationOptions& options) {
+  assert(sampling.simulated());
+  assert(options.Validate().ok());
+  if (!sampling.subsampled() || decoded.empty()) return decoded;
+  const int rows = decoded.rows, cols = decoded.cols;
+  const int degree = options.degree, radius = options.radius_px;
+
+  // JFIF luma and chroma (without chroma's offset of 128) of the decoded codes.
+  cv::Mat1f luma(rows, cols), chroma[2] = {cv::Mat1f(rows, cols), cv::Mat1f(rows, cols)};
+  for (int y = 0; y < rows; ++y) {
+    for (int x = 0; x < cols; ++x) {
+      const cv::Vec3b& p = decoded(y, x);  // B, G, R
+      luma(y, x) = static_cast<float>(0.299 * p[2] + 0.587 * p[1] + 0.114 * p[0]);
+      chroma[0](y, x) = static_cast<float>(-0.168736 * p[2] - 0.331264 * p[1] + 0.5 * p[0]);
+      chroma[1](y, x) = static_cast<float>(0.5 * p[2] - 0.418688 * p[1] - 0.081312 * p[0]);
+    }
+  }
+  // The features f_k at full resolution and passed through the codec's chroma path.
+  std::vector<cv::Mat1f> features(degree), paths(degree), path_means(degree);
+  for (int k = 0; k < degree; ++k) {
+    cv::Mat1d feature(rows, cols);
+    for (int y = 0; y < rows; ++y) {
+      for (int x = 0; x < cols; ++x) {
+        const double t = (luma(y, x) - 128.0) / kLumaScale;
+        double power = t;
+        for (int e = 0; e < k; ++e) power *= t;
+        feature(y, x) = power;
+      }
+    }
+    feature.convertTo(features[k], CV_32F);
+    ChromaSamplingPath(sampling, &feature);
+    feature.convertTo(paths[k], CV_32F);
+    path_means[k] = WindowMean(paths[k], radius);
+  }
+  // Window covariances of the path features (symmetric: the upper triangle is computed).
+  std::vector<cv::Mat1f> path_cov(degree * degree);
+  for (int i = 0; i < degree; ++i) {
+    for (int j = i; j < degree; ++j) {
+      path_cov[i * degree + j] =
+          WindowMean(Product(paths[i], paths[j]), radius) - Product(path_means[i], path_means[j]);
+    }
+  }
+  const double ridge = options.ridge_luma_codes2 / (kLumaScale * kLumaScale);
+
+  // Per chroma plane: each window's fit, then its misfit-weighted average over the windows
+  // holding a pixel, applied to the pixel's own features.
+  cv::Mat1f restored[2];
+  for (int c = 0; c < 2; ++c) {
+    const cv::Mat1f mean_c = WindowMean(chroma[c], radius);
+    const cv::Mat1f var_c = WindowMean(Product(chroma[c], chroma[c]), radius) -
+                            Product(mean_c, mean_c);
+    std::vector<cv::Mat1f> cov_c(degree);
+    for (int k = 0; k < degree; ++k) {
+      cov_c[k] = WindowMean(Product(paths[k], chroma[c]), radius) - Product(path_means[k], mean_c);
+    }
+    cv::Mat1f weight(rows, cols), weighted_b(rows, cols);
+    std::vector<cv::Mat1f> weighted_a(degree);
+    for (int k = 0; k < degree; ++k) weighted_a[k].create(rows, cols);
+    double moments[kMaxDegree][kMaxDegree], rhs[kMaxDegree], a[kMaxDegree];
+    for (int y = 0; y < rows; ++y) {
+      for (int x = 0; x < cols; ++x) {
+        for (int i = 0; i < degree; ++i) {
+          for (int j = 0; j <= i; ++j) moments[i][j] = path_cov[j * degree + i](y, x);
+          moments[i][i] += ridge;
+          rhs[i] = cov_c[i](y, x);
+        }
+        CholeskySolve(degree, moments, rhs, a);
+        double b = mean_c(y, x);
+        double explained = 0.0;
+        for (int k = 0; k < degree; ++k) {
+          b -= a[k] * path_means[k](y, x);
+          explained += a[k] * rhs[k];
+        }
+        const double misfit = std::max(0.0, var_c(y, x) - explained);
+        const double w = 1.0 / (misfit + options.misfit_floor_codes2);
+        weight(y, x) = static_cast<float>(w);
+        weighted_b(y, x) = static_cast<float>(w * b);
+        for (int k = 0; k < degree; ++k) weighted_a[k](y, x) = static_cast<float>(w * a[k]);
+      }
+    }
+    const cv::Mat1f total = WindowMean(weight, radius);
+    const cv::Mat1f b_mean = WindowMean(weighted_b, radius);
+    std::vector<cv::Mat1f> a_mean(degree);
+    for (int k = 0; k < degree; ++k) a_mean[k] = WindowMean(weighted_a[k], radius);
+    restored[c].create(rows, cols);
+    for (int y = 0; y < rows; ++y) {
+      for (int x = 0; x < cols; ++x) {
+        double value = b_mean(y, x);
+        for (int k = 0; k < degree; ++k) value += a_mean[k](y, x) * features[k](y, x);
+        restored[c](y, x) = static_cast<float>(value / total(y, x));
+      }
+    }
+  }
+  // Back to BGR codes with the decoded luma (JFIF's inverse matrix).
+  cv::Mat3b out(rows, cols);
+  for (int y = 0; y < rows; ++y) {
+    for (int x = 0; x < cols; ++x) {
+      const double l = luma(y, x), cb = restored[0](y, x), cr = restored[1](y, x);
+      out(y, x) = cv::Vec3b(cv::saturate_cast<uchar>(l + 1.772 * cb),
+                            cv::saturate_cast<uchar>(l - 0.344136 * cb - 0.714136 * cr),
+                            cv::saturate_cast<uchar>(l + 1.402 * cr));
+    }
+  }
+  return out;
+}
+
+}  // namespace bcot
