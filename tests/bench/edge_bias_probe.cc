@@ -5,8 +5,9 @@
 // the silhouette's edge lines of the edge stage (BuildEdgeLines, bcot/optim/edge_lines.h, with
 // the config's `edge:` options but without the inner contours' lines, occlusion and crease,
 // which occlusion_edge_probe and the crease note measure, and each camera's chroma sampling as
-// edge.chroma_sampling resolves it) are measured at the ground-truth pose, whose contour is the
-// true silhouette
+// edge.chroma_sampling resolves it, its frames' chroma restored when edge.chroma_restoration is
+// on, as the annotation prepares them) are measured at the ground-truth pose, whose contour is
+// the true silhouette
 // (pbr_gt_check proves it to a few hundredths of a pixel for the Blender renders). A line's μ is
 // then the measurement's own error along the outward normal (+ = the image edge is found
 // outside the true contour). Lines are binned by the direction of their normal in the image:
