@@ -332,6 +332,18 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "degree of the chroma restoration's polynomial in luma")
       .Range(Closed(1, 4));
   s->Add(
+       "edge.chroma_restoration_isophote_sigma_px",
+       [](auto& o) -> auto& { return o.chroma_restoration.isophote_sigma_px; }, "px",
+       "the chroma restoration reads the luma averaged along its isophotes by a Gaussian of this "
+       "sigma (0 = each pixel's own luma)")
+      .Range(Closed(0.0, 4.0));
+  s->Add(
+       "edge.chroma_restoration_hue_slope",
+       [](auto& o) -> auto& { return o.chroma_restoration.hue_slope_codes; }, "codes/code",
+       "where chroma changes more than this per unit of luma the decoded chroma is kept "
+       "(weight s0^2 / (s0^2 + slope^2) of the restored one; 0 = restored everywhere)")
+      .Range(AtLeast(0.0));
+  s->Add(
        "edge.gamma", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.response.gamma; }, "",
        "exponent of edge.response: gamma, linear = (code / 255)^gamma")
       .Range(Closed(ImageResponse::kMinGamma, ImageResponse::kMaxGamma));

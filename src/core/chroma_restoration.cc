@@ -17,6 +17,12 @@ Status ChromaRestorationOptions::Validate() const {
   if (degree < 1 || degree > 4) violations.push_back("degree must be in [1, 4]");
   if (!(ridge_luma_codes2 > 0.0)) violations.push_back("ridge_luma_codes2 must be > 0");
   if (!(misfit_floor_codes2 > 0.0)) violations.push_back("misfit_floor_codes2 must be > 0");
+  if (!(isophote_sigma_px >= 0.0 && isophote_sigma_px <= 4.0)) {
+    violations.push_back("isophote_sigma_px must be in [0, 4]");
+  }
+  if (!(hue_slope_codes >= 0.0 && std::isfinite(hue_slope_codes))) {
+    violations.push_back("hue_slope_codes must be >= 0 and finite");
+  }
   return internal::JoinViolations("chroma restoration", violations);
 }
 
@@ -67,6 +73,47 @@ cv::Mat1f Product(const cv::Mat1f& a, const cv::Mat1f& b) {
   return product;
 }
 
+// `luma` averaged along its isophotes: at each pixel a Gaussian of `sigma` (pixels) along the
+// direction across the local gradient, read bilinearly. The direction is the structure tensor's
+// (gradients of the luma smoothed by 1 px, the tensor smoothed by 1 px), so that noise does not
+// turn it; where the luma is flat any direction serves.
+cv::Mat1f AlongIsophotes(const cv::Mat1f& luma, double sigma) {
+  constexpr double kTensorSigma = 1.0;
+  cv::Mat1f smoothed, gx, gy;
+  cv::GaussianBlur(luma, smoothed, cv::Size(), kTensorSigma, kTensorSigma, cv::BORDER_REFLECT);
+  cv::Sobel(smoothed, gx, CV_32F, 1, 0, 3, 1.0, 0.0, cv::BORDER_REFLECT);
+  cv::Sobel(smoothed, gy, CV_32F, 0, 1, 3, 1.0, 0.0, cv::BORDER_REFLECT);
+  cv::Mat1f jxx = Product(gx, gx), jyy = Product(gy, gy), jxy = Product(gx, gy);
+  for (cv::Mat1f* j : {&jxx, &jyy, &jxy}) {
+    cv::GaussianBlur(*j, *j, cv::Size(), kTensorSigma, kTensorSigma, cv::BORDER_REFLECT);
+  }
+  // The tangent (−sin θ, cos θ) of the dominant gradient direction θ = ½·atan2(2·Jxy, Jxx − Jyy).
+  cv::Mat1f tangent_x(luma.size()), tangent_y(luma.size());
+  for (int y = 0; y < luma.rows; ++y) {
+    for (int x = 0; x < luma.cols; ++x) {
+      const double theta = 0.5 * std::atan2(2.0 * jxy(y, x), jxx(y, x) - jyy(y, x));
+      tangent_x(y, x) = static_cast<float>(-std::sin(theta));
+      tangent_y(y, x) = static_cast<float>(std::cos(theta));
+    }
+  }
+  const int reach = static_cast<int>(std::ceil(2.0 * sigma));
+  cv::Mat1f sum = cv::Mat1f::zeros(luma.size()), map_x(luma.size()), map_y(luma.size()), sample;
+  double weight_sum = 0.0;
+  for (int k = -reach; k <= reach; ++k) {
+    const double weight = std::exp(-0.5 * (k / sigma) * (k / sigma));
+    for (int y = 0; y < luma.rows; ++y) {
+      for (int x = 0; x < luma.cols; ++x) {
+        map_x(y, x) = static_cast<float>(x + k * tangent_x(y, x));
+        map_y(y, x) = static_cast<float>(y + k * tangent_y(y, x));
+      }
+    }
+    cv::remap(luma, sample, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REFLECT);
+    cv::scaleAdd(sample, weight, sum, sum);
+    weight_sum += weight;
+  }
+  return sum / weight_sum;
+}
+
 }  // namespace
 
 cv::Mat3b RestoreSubsampledChroma(const cv::Mat3b& decoded, const ChromaSampling& sampling,
@@ -87,13 +134,17 @@ cv::Mat3b RestoreSubsampledChroma(const cv::Mat3b& decoded, const ChromaSampling
       chroma[1](y, x) = static_cast<float>(0.5 * p[2] - 0.418688 * p[1] - 0.081312 * p[0]);
     }
   }
+  // The luma the polynomial reads (header: averaged along the isophotes).
+  const cv::Mat1f read_luma = options.isophote_sigma_px > 0.0
+                                  ? AlongIsophotes(luma, options.isophote_sigma_px)
+                                  : luma;
   // The features f_k at full resolution and passed through the codec's chroma path.
   std::vector<cv::Mat1f> features(degree), paths(degree), path_means(degree);
   for (int k = 0; k < degree; ++k) {
     cv::Mat1d feature(rows, cols);
     for (int y = 0; y < rows; ++y) {
       for (int x = 0; x < cols; ++x) {
-        const double t = (luma(y, x) - 128.0) / kLumaScale;
+        const double t = (read_luma(y, x) - 128.0) / kLumaScale;
         double power = t;
         for (int e = 0; e < k; ++e) power *= t;
         feature(y, x) = power;
@@ -115,8 +166,8 @@ cv::Mat3b RestoreSubsampledChroma(const cv::Mat3b& decoded, const ChromaSampling
   const double ridge = options.ridge_luma_codes2 / (kLumaScale * kLumaScale);
 
   // Per chroma plane: each window's fit, then its misfit-weighted average over the windows
-  // holding a pixel, applied to the pixel's own features.
-  cv::Mat1f restored[2];
+  // holding a pixel, applied to the pixel's own features; and the polynomial's slope dC/dY there.
+  cv::Mat1f restored[2], slope[2];
   for (int c = 0; c < 2; ++c) {
     const cv::Mat1f mean_c = WindowMean(chroma[c], radius);
     const cv::Mat1f var_c = WindowMean(Product(chroma[c], chroma[c]), radius) -
@@ -155,11 +206,32 @@ cv::Mat3b RestoreSubsampledChroma(const cv::Mat3b& decoded, const ChromaSampling
     std::vector<cv::Mat1f> a_mean(degree);
     for (int k = 0; k < degree; ++k) a_mean[k] = WindowMean(weighted_a[k], radius);
     restored[c].create(rows, cols);
+    slope[c].create(rows, cols);
     for (int y = 0; y < rows; ++y) {
       for (int x = 0; x < cols; ++x) {
-        double value = b_mean(y, x);
-        for (int k = 0; k < degree; ++k) value += a_mean[k](y, x) * features[k](y, x);
+        const double t = (read_luma(y, x) - 128.0) / kLumaScale;
+        double value = b_mean(y, x), derivative = 0.0, power = 1.0;  // power = t^k
+        for (int k = 0; k < degree; ++k) {
+          value += a_mean[k](y, x) * features[k](y, x);
+          derivative += a_mean[k](y, x) * (k + 1) * power;  // d f_{k+1} / dt = (k + 1)·t^k
+          power *= t;
+        }
         restored[c](y, x) = static_cast<float>(value / total(y, x));
+        slope[c](y, x) = static_cast<float>(derivative / (total(y, x) * kLumaScale));
+      }
+    }
+  }
+  // Kept off hue edges (header): the decoded chroma where chroma changes much more than luma.
+  if (options.hue_slope_codes > 0.0) {
+    const double s0_squared = options.hue_slope_codes * options.hue_slope_codes;
+    for (int y = 0; y < rows; ++y) {
+      for (int x = 0; x < cols; ++x) {
+        const double s_squared =
+            slope[0](y, x) * slope[0](y, x) + slope[1](y, x) * slope[1](y, x);
+        const double w = s0_squared / (s0_squared + s_squared);
+        for (int c = 0; c < 2; ++c) {
+          restored[c](y, x) = static_cast<float>(w * restored[c](y, x) + (1.0 - w) * chroma[c](y, x));
+        }
       }
     }
   }

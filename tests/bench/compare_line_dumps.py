@@ -12,13 +12,17 @@ import sys
 import numpy as np
 
 
+def line_key(fields):
+    """A dump line's identity across twins: camera, frame and centre."""
+    return (fields[0], int(fields[1]), round(float(fields[3]), 2), round(float(fields[4]), 2))
+
+
 def load(path):
     lines = {}
     with open(path) as f:
         for row in f:
             fields = row.split()
-            key = (fields[0], int(fields[1]), round(float(fields[3]), 2), round(float(fields[4]), 2))
-            lines[key] = (fields[2], float(fields[7]))
+            lines[line_key(fields)] = (fields[2], float(fields[7]))
     return lines
 
 

@@ -15,12 +15,26 @@
 // whose chroma is no function of luma (three colours, a colour boundary of equal luma) give way to
 // those that fit. The pixel's chroma is then that polynomial of its own full-resolution luma.
 //
+// Two refinements (same note, "The restoration along the isophote, and kept off hue edges"):
+// - The luma the polynomial is evaluated at (and fitted with) is first averaged along the local
+//   isophote, a Gaussian of isophote_sigma_px along the direction across the luma gradient
+//   (structure tensor). Across an edge nothing is averaged, so the restored chroma edge stays as
+//   sharp as the luma's; along it the luma noise the polynomial carries into chroma is averaged
+//   down (its standard deviation by 1 / sqrt(2·sqrt(π)·σ), 0.53 at σ = 1 px).
+// - Where chroma changes much more than luma (|dC/dY|, both planes, codes per code of the
+//   polynomial at the pixel's luma), luma says little about where the chroma edge lies and
+//   carries its noise into chroma many times over; there the decoded chroma is kept:
+//   restored = w·polynomial + (1 − w)·decoded, w = s0² / (s0² + s²), s² = |dC/dY|² summed over
+//   Cb and Cr (one weight for both, so that the colour's hue is not split between the two
+//   sources), s0 = hue_slope_codes.
+//
 // On a two-colour edge this removes most of the chroma blur that moves an edge measured in colour
 // (issue 12's vertical bias on 4:2:0 JPEG renders of a saturated object). Its own error is the
 // polynomial's fit of the sRGB bend, about a code, which it adds where the decoded chroma was
 // right already (an edge along the rows at 4:2:2). Where two colours of about equal luma meet
-// (hue edges), luma noise is amplified into chroma: on small objects with such edges it costs
-// rotation, so it is off by default (docs/notes/issue12_jpeg_chroma.md, "Chroma brought back by
+// (hue edges), luma noise is amplified into chroma; the blend above keeps most of that out, but on
+// small objects the restoration still costs rotation against the per-line correction, so it is
+// off by default (docs/notes/issue12_jpeg_chroma.md, "Chroma brought back by
 // the luma").
 #pragma once
 
@@ -46,6 +60,13 @@ struct ChromaRestorationOptions {
   double ridge_luma_codes2 = 4.0;
   // Floor of a window's misfit (mean squared chroma residual, codes²) in its weight.
   double misfit_floor_codes2 = 0.1;
+  // σ of the Gaussian along the isophote the luma is averaged with before the polynomial reads
+  // it, pixels; 0 reads each pixel's own luma.
+  double isophote_sigma_px = 1.0;
+  // s0 of the blend with the decoded chroma (header): the chroma change per luma change, codes
+  // per code, at which restored and decoded chroma weigh the same; 0 keeps the restored chroma
+  // everywhere.
+  double hue_slope_codes = 2.0;
 
   Status Validate() const;
 };
