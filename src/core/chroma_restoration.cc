@@ -230,7 +230,8 @@ cv::Mat3b RestoreSubsampledChroma(const cv::Mat3b& decoded, const ChromaSampling
             slope[0](y, x) * slope[0](y, x) + slope[1](y, x) * slope[1](y, x);
         const double w = s0_squared / (s0_squared + s_squared);
         for (int c = 0; c < 2; ++c) {
-          restored[c](y, x) = static_cast<float>(w * restored[c](y, x) + (1.0 - w) * chroma[c](y, x));
+          const double blended = w * restored[c](y, x) + (1.0 - w) * chroma[c](y, x);
+          restored[c](y, x) = static_cast<float>(blended);
         }
       }
     }

@@ -196,7 +196,8 @@ TEST(ChromaRestorationTest, LeansOnTheDecodedChromaWhereLumaCannotTellTheColours
   ChromaRestorationOptions ungated;
   ungated.hue_slope_codes = 0.0;
   const cv::Mat3b gated_out = RestoreSubsampledChroma(decoded, ChromaSampling::Jpeg420(), {});
-  const cv::Mat3b ungated_out = RestoreSubsampledChroma(decoded, ChromaSampling::Jpeg420(), ungated);
+  const cv::Mat3b ungated_out =
+      RestoreSubsampledChroma(decoded, ChromaSampling::Jpeg420(), ungated);
   const cv::Mat3b truth = Rounded(EdgeCodes(reddish, bluish, angle, offset_px, 0.8));
   const double decoded_rms = EdgeChromaRms(decoded, truth, angle, offset_px);
   const double gated_rms = EdgeChromaRms(gated_out, truth, angle, offset_px);

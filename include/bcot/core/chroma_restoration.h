@@ -33,9 +33,9 @@
 // polynomial's fit of the sRGB bend, about a code, which it adds where the decoded chroma was
 // right already (an edge along the rows at 4:2:2). Where two colours of about equal luma meet
 // (hue edges), luma noise is amplified into chroma; the blend above keeps most of that out, but on
-// small objects the restoration still costs rotation against the per-line correction, so it is
-// off by default (docs/notes/issue12_jpeg_chroma.md, "Chroma brought back by
-// the luma").
+// small objects the restoration still costs rotation against the per-line correction, and on one
+// small object turning fast it lost two frames end to end, so it is off by default
+// (docs/notes/issue12_jpeg_chroma.md, "Chroma brought back by the luma" and the section after).
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -47,7 +47,7 @@ namespace bcot {
 
 struct ChromaRestorationOptions {
   // Off by default: it removes most of 4:2:0's vertical bias on a saturated plastic object but
-  // costs rotation on small objects whose edges are mostly hue (issue12_jpeg_chroma.md).
+  // costs rotation on small objects (issue12_jpeg_chroma.md).
   bool enabled = false;
   // Window radius r, pixels: a window of (2r + 1)² pixels spans the codec's blur of an edge (the
   // block plus the upsampling's reach: ±2 pixels at 4:2:0) with room for both colours.
