@@ -40,32 +40,42 @@ def box(image, radius):
     return cv2.blur(image, (2 * radius + 1, 2 * radius + 1), borderType=cv2.BORDER_REFLECT)
 
 
-def restore(bgr, radius, eps, degree=1, tau=0.0):
-    y, cb, cr = jv.to_ycbcr(bgr)
-    features = [((y - 128.0) / 64.0) ** k for k in range(1, degree + 1)]
+def fit_planes(read_luma, planes, radius, eps, degree, tau):
+    """The polynomial in f = (read_luma − 128) / 64 fitted per window to each chroma plane through
+    the codec's chroma path, averaged over the windows holding each pixel (uniformly, or with
+    tau > 0 weighted by 1 / (misfit + tau)). Per plane: the features f^k, the averaged a_k and b,
+    and the windows' averaged misfit (codes²; None when uniform)."""
+    features = [((read_luma - 128.0) / 64.0) ** k for k in range(1, degree + 1)]
     paths = [jv.subsample(f) for f in features]  # each feature through the chroma's path
     means = [box(p, radius) for p in paths]
     k = len(features)
-    cov_ff = np.empty(y.shape + (k, k))
+    cov_ff = np.empty(read_luma.shape + (k, k))
     for i in range(k):
         for j in range(k):
             cov_ff[..., i, j] = box(paths[i] * paths[j], radius) - means[i] * means[j]
     cov_ff += (eps / 4096.0) * np.eye(k)  # eps in codes² of Y
-    out = []
-    for c in (cb, cr):
+    fits = []
+    for c in planes:
         mean_c = box(c, radius)
         cov_fc = np.stack([box(paths[i] * c, radius) - means[i] * mean_c for i in range(k)], -1)
         a = np.linalg.solve(cov_ff, cov_fc[..., None])[..., 0]
         b = mean_c - sum(a[..., i] * means[i] for i in range(k))
         if tau <= 0:
-            out.append(sum(box(a[..., i], radius) * features[i] for i in range(k)) + box(b, radius))
+            fits.append((features, [box(a[..., i], radius) for i in range(k)], box(b, radius), None))
             continue
         # Each window's own misfit: its mean squared residual of the decoded chroma.
-        resid = box(c * c, radius) - mean_c * mean_c - (a * cov_fc).sum(-1)
-        weight = 1.0 / (np.maximum(resid, 0.0) + tau)
+        resid = np.maximum(box(c * c, radius) - mean_c * mean_c - (a * cov_fc).sum(-1), 0.0)
+        weight = 1.0 / (resid + tau)
         norm = box(weight, radius)
-        out.append(sum(box(weight * a[..., i], radius) / norm * features[i] for i in range(k))
-                   + box(weight * b, radius) / norm)
+        fits.append((features, [box(weight * a[..., i], radius) / norm for i in range(k)],
+                     box(weight * b, radius) / norm, box(weight * resid, radius) / norm))
+    return fits
+
+
+def restore(bgr, radius, eps, degree=1, tau=0.0):
+    y, cb, cr = jv.to_ycbcr(bgr)
+    out = [sum(a_i * f_i for a_i, f_i in zip(a, features)) + b
+           for features, a, b, _ in fit_planes(y, (cb, cr), radius, eps, degree, tau)]
     return jv.to_bgr(y, out[0], out[1])
 
 

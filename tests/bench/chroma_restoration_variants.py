@@ -28,38 +28,20 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
                                 "scripts", "pbr"))
 import jpeg_variants as jv  # noqa: E402
 import pbr_common as pc  # noqa: E402
-from chroma_luma_guided import box  # noqa: E402
+from chroma_luma_guided import fit_planes  # noqa: E402
 
 
-def restore_planes(bgr, smooth_sigma=0.0, radius=3, eps=4.0, degree=3, tau=0.1):
+def restore_planes(bgr, smooth_sigma=0.0):
     """Luma, and per chroma plane the decoded and restored chroma, the polynomial's slope dC/dY
     and the windows' weighted misfit (codes²)."""
     y, cb, cr = jv.to_ycbcr(bgr.astype(np.float64))
     read = cv2.GaussianBlur(y, (0, 0), smooth_sigma) if smooth_sigma > 0 else y
     t = (read - 128.0) / 64.0
-    features = [t ** k for k in range(1, degree + 1)]
-    derivatives = [k * t ** (k - 1) / 64.0 for k in range(1, degree + 1)]
-    paths = [jv.subsample(f) for f in features]
-    means = [box(p, radius) for p in paths]
-    cov_ff = np.empty(y.shape + (degree, degree))
-    for i in range(degree):
-        for j in range(degree):
-            cov_ff[..., i, j] = box(paths[i] * paths[j], radius) - means[i] * means[j]
-    cov_ff += (eps / 4096.0) * np.eye(degree)
     planes = []
-    for c in (cb, cr):
-        mean_c = box(c, radius)
-        cov_fc = np.stack([box(paths[i] * c, radius) - means[i] * mean_c for i in range(degree)], -1)
-        a = np.linalg.solve(cov_ff, cov_fc[..., None])[..., 0]
-        b = mean_c - sum(a[..., i] * means[i] for i in range(degree))
-        misfit = np.maximum(box(c * c, radius) - mean_c * mean_c - (a * cov_fc).sum(-1), 0.0)
-        weight = 1.0 / (misfit + tau)
-        norm = box(weight, radius)
-        a_mean = [box(weight * a[..., i], radius) / norm for i in range(degree)]
-        restored = sum(a_mean[i] * features[i] for i in range(degree)) + box(weight * b, radius) / norm
-        planes.append(dict(decoded=c, restored=restored,
-                           slope=sum(a_mean[i] * derivatives[i] for i in range(degree)),
-                           misfit=box(weight * misfit, radius) / norm))
+    for c, (features, a, b, misfit) in zip((cb, cr), fit_planes(read, (cb, cr), 3, 4.0, 3, 0.1)):
+        planes.append(dict(decoded=c, restored=sum(a_k * f_k for a_k, f_k in zip(a, features)) + b,
+                           slope=sum(a[k] * (k + 1) * t ** k / 64.0 for k in range(len(a))),
+                           misfit=misfit))
     return y, planes
 
 
