@@ -316,30 +316,32 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
       "edge stage takes the move off: auto (each camera's first frame: a JPEG's header, else "
       "4:4:4), or set (frames converted from 4:2:0 JPEG to PNG keep its damage)");
   s->Add(
-      "edge.chroma_restoration", [](auto& o) -> auto& { return o.chroma_restoration.enabled; },
-      "",
-      "frames with subsampled chroma get it back at full resolution from their luma before "
-      "tracking (the edge stage then measures them as 4:4:4); false = the decoded frames and the "
-      "edge stage's per-line correction");
+      "edge.chroma_restoration",
+      [](auto& o) -> auto& { return o.tracker.frame.edge.chroma_restoration.enabled; }, "",
+      "the edge stage's last round measures frames with subsampled chroma on a copy whose chroma "
+      "is brought back to full resolution from the luma around the object, as 4:4:4; false = "
+      "the decoded frames and a per-line correction (the region stage reads them either way)");
   s->Add(
        "edge.chroma_restoration_radius_px",
-       [](auto& o) -> auto& { return o.chroma_restoration.radius_px; }, "px",
+       [](auto& o) -> auto& { return o.tracker.frame.edge.chroma_restoration.radius_px; }, "px",
        "window radius of the chroma restoration's local fits")
       .Range(Closed(1, 16));
   s->Add(
        "edge.chroma_restoration_degree",
-       [](auto& o) -> auto& { return o.chroma_restoration.degree; }, "",
+       [](auto& o) -> auto& { return o.tracker.frame.edge.chroma_restoration.degree; }, "",
        "degree of the chroma restoration's polynomial in luma")
       .Range(Closed(1, 4));
   s->Add(
        "edge.chroma_restoration_isophote_sigma_px",
-       [](auto& o) -> auto& { return o.chroma_restoration.isophote_sigma_px; }, "px",
+       [](auto& o) -> auto& { return o.tracker.frame.edge.chroma_restoration.isophote_sigma_px; },
+       "px",
        "the chroma restoration reads the luma averaged along its isophotes by a Gaussian of this "
        "sigma (0 = each pixel's own luma)")
       .Range(Closed(0.0, 4.0));
   s->Add(
        "edge.chroma_restoration_hue_slope",
-       [](auto& o) -> auto& { return o.chroma_restoration.hue_slope_codes; }, "codes/code",
+       [](auto& o) -> auto& { return o.tracker.frame.edge.chroma_restoration.hue_slope_codes; },
+       "codes/code",
        "where chroma changes more than this per unit of luma the decoded chroma is kept "
        "(weight s0^2 / (s0^2 + slope^2) of the restored one; 0 = restored everywhere)")
       .Range(AtLeast(0.0));
@@ -607,8 +609,7 @@ OptionSchema<AnnotateOptions>* BuildAnnotateOptionSchema() {
 // there but not declared here still stops a bad config, naming `source_name`.
 Status LayerChecks(const AnnotateOptions& options, const std::string& source_name) {
   for (const Status& status : {options.tracker.Validate(), options.window.Validate(),
-                               options.symmetry.detection.Validate(),
-                               options.chroma_restoration.Validate()}) {
+                               options.symmetry.detection.Validate()}) {
     if (!status.ok()) return Status::InvalidConfig(source_name + ": " + status.message());
   }
   return Status::Ok();

@@ -24,7 +24,6 @@
 #include "bcot/annotate/splice.h"
 #include "bcot/annotate/tracking_plan.h"
 #include "bcot/core/annotation_poses.h"
-#include "bcot/core/chroma_restoration.h"
 #include "bcot/core/content_hash.h"
 #include "bcot/core/file_util.h"
 #include "bcot/core/image_cache.h"
@@ -111,18 +110,11 @@ StatusOr<std::map<int, Eigen::Isometry3d>> AnchorPoses(const Sequence& sequence,
   return anchors;
 }
 
-// The cameras the options' `views` ask for: their indices into the rig and how their files
-// store chroma.
-struct SelectedCameras {
-  std::vector<int> rig_indices;
-  std::vector<ChromaSampling> stored_chroma;
-};
-
-// The tracked views of the cameras the options' `views` ask for, with their weights and the
-// chroma sampling the tracker sees (TrackedChromaSampling).
+// Indices into the rig of the cameras the options' `views` ask for, with their weights and
+// chroma sampling.
 StatusOr<std::vector<TrackedView>> SelectViews(const Sequence& sequence,
                                                const AnnotateOptions& options,
-                                               SelectedCameras* selected) {
+                                               std::vector<int>* rig_indices) {
   const Rig& rig = sequence.rig;
   const ViewSelection& selection = options.views;
   std::vector<int> indices;
@@ -147,35 +139,26 @@ StatusOr<std::vector<TrackedView>> SelectViews(const Sequence& sequence,
                                              selection.weights.size(), indices.size()));
   }
   std::vector<TrackedView> views;
-  selected->stored_chroma.clear();
   for (size_t i = 0; i < indices.size(); ++i) {
     const RigCamera& camera = rig[indices[i]];
     BCOT_ASSIGN_OR_RETURN(const ChromaSampling chroma,
                           ResolveChromaSampling(sequence, indices[i], options.chroma_sampling));
     views.push_back({camera.camera, camera.cam_from_rig,
-                     selection.weights.empty() ? 1.0 : selection.weights[i],
-                     TrackedChromaSampling(chroma, options)});
-    selected->stored_chroma.push_back(chroma);
+                     selection.weights.empty() ? 1.0 : selection.weights[i], chroma});
   }
-  selected->rig_indices = indices;
+  *rig_indices = indices;
   return views;
 }
 
 // The images of `frame` from the selected cameras (SelectViews), decoded concurrently (through
-// `cache` when given) and prepared for the tracker (PrepareTrackedImage); the first failure in
-// view order is reported.
+// `cache` when given); the first failure in view order is reported.
 StatusOr<std::vector<cv::Mat3b>> ReadFrameImages(const Sequence& sequence,
-                                                 const SelectedCameras& selected,
+                                                 const std::vector<int>& rig_indices,
                                                  const std::vector<TrackedView>& views, int frame,
-                                                 const AnnotateOptions& options,
                                                  DecodedImageCache* cache) {
-  const std::vector<int>& rig_indices = selected.rig_indices;
   std::vector<StatusOr<cv::Mat3b>> read(rig_indices.size(), Status::Internal("not read"));
   tbb::parallel_for(size_t{0}, rig_indices.size(), [&](size_t v) {
     read[v] = ReadCameraImage(sequence.image_paths[rig_indices[v]][frame], views[v].camera, cache);
-    if (read[v].ok()) {
-      read[v] = PrepareTrackedImage(*read[v], selected.stored_chroma[v], options);
-    }
   });
   std::vector<cv::Mat3b> images;
   for (StatusOr<cv::Mat3b>& image : read) {
@@ -202,21 +185,6 @@ ImageResponseRecord ImageResponseRecordOf(const MultiViewTracker& tracker) {
 }
 
 }  // namespace
-
-bool RestoresChroma(const ChromaSampling& stored, const AnnotateOptions& options) {
-  return options.chroma_restoration.enabled && stored.subsampled() && stored.simulated();
-}
-
-ChromaSampling TrackedChromaSampling(const ChromaSampling& stored, const AnnotateOptions& options) {
-  return RestoresChroma(stored, options) ? ChromaSampling::Full() : stored;
-}
-
-cv::Mat3b PrepareTrackedImage(const cv::Mat3b& decoded, const ChromaSampling& stored,
-                              const AnnotateOptions& options) {
-  return RestoresChroma(stored, options)
-             ? RestoreSubsampledChroma(decoded, stored, options.chroma_restoration)
-             : decoded;
-}
 
 StatusOr<ChromaSampling> ResolveChromaSampling(const Sequence& sequence, int index,
                                                ChromaSamplingSetting setting) {
@@ -316,11 +284,11 @@ StatusOr<RefinedFrame> RefineFrame(const Sequence& sequence, const RayCaster& ca
     return Status::InvalidInput(
         fmt::format("frame {}: the sequence has frames 0..{}", frame, sequence.num_frames - 1));
   }
-  SelectedCameras selected;
+  std::vector<int> rig_indices;
   BCOT_ASSIGN_OR_RETURN(std::vector<TrackedView> views,
-                        SelectViews(sequence, options, &selected));
+                        SelectViews(sequence, options, &rig_indices));
   BCOT_ASSIGN_OR_RETURN(std::vector<cv::Mat3b> images,
-                        ReadFrameImages(sequence, selected, views, frame, options, nullptr));
+                        ReadFrameImages(sequence, rig_indices, views, frame, nullptr));
   BCOT_ASSIGN_OR_RETURN(const std::optional<RotationalSymmetry> symmetry,
                         ObjectSymmetry(caster, options));
   BCOT_ASSIGN_OR_RETURN(
@@ -349,8 +317,8 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
     return Status::InvalidInput(fmt::format("the existing annotation has {} poses for {} frames",
                                             existing.size(), sequence.num_frames));
   }
-  SelectedCameras selected;
-  StatusOr<std::vector<TrackedView>> views = SelectViews(sequence, options, &selected);
+  std::vector<int> rig_indices;
+  StatusOr<std::vector<TrackedView>> views = SelectViews(sequence, options, &rig_indices);
   if (!views.ok()) return views.status();
   const Mesh& mesh = caster.mesh();
   using AnchorMap = std::map<int, Eigen::Isometry3d>;
@@ -421,7 +389,7 @@ StatusOr<SequenceAnnotation> AnnotateFrames(const Sequence& sequence, const RayC
   const bool keep_templates = window || observer;
 
   const auto read_images = [&](int frame) {
-    return ReadFrameImages(sequence, selected, *views, frame, options, images);
+    return ReadFrameImages(sequence, rig_indices, *views, frame, images);
   };
   // One solved frame before it is recorded (backward segments are recorded in frame order).
   struct Solved {

@@ -249,4 +249,35 @@ cv::Mat3b RestoreSubsampledChroma(const cv::Mat3b& decoded, const ChromaSampling
   return out;
 }
 
+int ChromaRestorationReachPx(const ChromaRestorationOptions& options) {
+  // The luma the polynomial reads: with isophote averaging, the direction at the pixel comes from
+  // two Gaussians of 1 px (OpenCV's 9-tap kernels, 4 each) and a 3×3 Sobel (1), the walk along
+  // it reaches ceil(2σ) and its bilinear read one more.
+  const int read_reach =
+      options.isophote_sigma_px > 0.0
+          ? std::max(4 + 1 + 4, static_cast<int>(std::ceil(2.0 * options.isophote_sigma_px)) + 1)
+          : 0;
+  // Then the codec's chroma path (a 2-pixel block and the fancy upsampling's reach into the next
+  // block, 4 at most), and each window fit and the average over the windows holding a pixel (2r).
+  return read_reach + 4 + 2 * options.radius_px;
+}
+
+cv::Mat3b RestoreSubsampledChroma(const cv::Mat3b& decoded, const ChromaSampling& sampling,
+                                  const ChromaRestorationOptions& options, const cv::Rect& region) {
+  const cv::Rect image_rect(0, 0, decoded.cols, decoded.rows);
+  const cv::Rect inner = region & image_rect;
+  if (!sampling.subsampled() || inner.empty()) return decoded;
+  // The crop keeps the codec's block grid: its origin on even coordinates (blocks are at most
+  // 2 pixels across and down, ChromaSampling::simulated()).
+  const int reach = ChromaRestorationReachPx(options);
+  const int x0 = std::max(0, (inner.x - reach) / 2 * 2);
+  const int y0 = std::max(0, (inner.y - reach) / 2 * 2);
+  const cv::Rect crop =
+      cv::Rect(x0, y0, inner.br().x + reach - x0, inner.br().y + reach - y0) & image_rect;
+  const cv::Mat3b restored = RestoreSubsampledChroma(decoded(crop).clone(), sampling, options);
+  cv::Mat3b out = decoded.clone();
+  restored(inner - crop.tl()).copyTo(out(inner));
+  return out;
+}
+
 }  // namespace bcot

@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "bcot/core/chroma_restoration.h"
 #include "bcot/core/chroma_sampling.h"
 #include "bcot/core/linear_rgb.h"
 #include "bcot/core/violations.h"
@@ -594,6 +595,29 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
                      silhouette.mask, options, &result);
   }
   return result;
+}
+
+EdgeImage EdgeImageOf(const cv::Mat3b& image, const ChromaSampling& sampling,
+                      const ChromaRestorationOptions& restoration, const Silhouette& silhouette,
+                      const EdgeLineOptions& options) {
+  if (!restoration.enabled || !sampling.subsampled() || !sampling.simulated() ||
+      silhouette.contour.empty()) {
+    return {image, sampling};
+  }
+  // Every line lies within window_px of a contour point (crease lines within the contour), and
+  // its samples are read bilinearly: one pixel more.
+  Eigen::Vector2d low = silhouette.contour.front().pixel, high = low;
+  for (const ContourPoint& point : silhouette.contour) {
+    low = low.cwiseMin(point.pixel);
+    high = high.cwiseMax(point.pixel);
+  }
+  const double margin = options.window_px + 1.0;
+  const int x0 = static_cast<int>(std::floor(low.x() - margin));
+  const int y0 = static_cast<int>(std::floor(low.y() - margin));
+  const int x1 = static_cast<int>(std::ceil(high.x() + margin)) + 1;
+  const int y1 = static_cast<int>(std::ceil(high.y() + margin)) + 1;
+  return {RestoreSubsampledChroma(image, sampling, restoration, cv::Rect(x0, y0, x1 - x0, y1 - y0)),
+          ChromaSampling::Full()};
 }
 
 }  // namespace bcot

@@ -103,8 +103,9 @@ Status EdgeRefineOptions::Validate() const {
         fmt::format("redescending_scale = {}, must be finite and > 0", redescending_scale));
   }
   if (min_lines < 6) violations.push_back(fmt::format("min_lines = {}, must be >= 6", min_lines));
-  const Status lines_status = lines.Validate();
-  if (!lines_status.ok()) violations.push_back(lines_status.message());
+  for (const Status& status : {lines.Validate(), chroma_restoration.Validate()}) {
+    if (!status.ok()) violations.push_back(status.message());
+  }
   return internal::JoinViolations("edge", violations);
 }
 
@@ -670,11 +671,14 @@ bool FrameProblem::RefineEdges(const std::vector<FrameView>& views, double* para
       // (scripts/bench_edge_fit.sh); the earlier rounds only bring the contour within a fraction
       // of a pixel, the last one's lines place the pose, so only they are corrected
       // (docs/notes/issue12_jpeg_chroma.md).
-      const ChromaSampling chroma =
-          round + 1 == total_rounds ? view.chroma : ChromaSampling::Full();
-      StatusOr<CorrespondenceLines> lines =
-          BuildEdgeLines(caster_, *view.camera, view.cam_from_rig, linearisation_pose, *view.image,
-                         silhouette, edge.lines, chroma, &creases_);
+      // The restoration (EdgeRefineOptions::chroma_restoration) likewise serves the last round.
+      const EdgeImage measured_on =
+          round + 1 == total_rounds ? EdgeImageOf(*view.image, view.chroma, edge.chroma_restoration,
+                                                  silhouette, edge.lines)
+                                    : EdgeImage{*view.image, ChromaSampling::Full()};
+      StatusOr<CorrespondenceLines> lines = BuildEdgeLines(
+          caster_, *view.camera, view.cam_from_rig, linearisation_pose, measured_on.image,
+          silhouette, edge.lines, measured_on.sampling, &creases_);
       BCOT_CHECK(lines.ok());
       view_lines[v] = std::make_shared<const CorrespondenceLines>(std::move(lines).value());
     });

@@ -17,6 +17,18 @@ def line_key(fields):
     return (fields[0], int(fields[1]), round(float(fields[3]), 2), round(float(fields[4]), 2))
 
 
+def load_profiles(path):
+    """Each dump line's rim, μ and linear RGB profile (samples × 3), by line_key."""
+    lines = {}
+    with open(path) as f:
+        for row in f:
+            fields = row.split()
+            end = fields.index("BLUR") if "BLUR" in fields else len(fields)
+            profile = np.array([float(v) for v in fields[9:end]]).reshape(-1, 3)
+            lines[line_key(fields)] = (fields[2], float(fields[7]), profile)
+    return lines
+
+
 def load(path):
     lines = {}
     with open(path) as f:

@@ -5,9 +5,9 @@
 // the silhouette's edge lines of the edge stage (BuildEdgeLines, bcot/optim/edge_lines.h, with
 // the config's `edge:` options but without the inner contours' lines, occlusion and crease,
 // which occlusion_edge_probe and the crease note measure, and each camera's chroma sampling as
-// edge.chroma_sampling resolves it, its frames' chroma restored when edge.chroma_restoration is
-// on, as the annotation prepares them) are measured at the ground-truth pose, whose contour is
-// the true silhouette
+// edge.chroma_sampling resolves it, read as the stage's last round reads them: with
+// edge.chroma_restoration on, on the frame restored around the object, EdgeImageOf) are measured
+// at the ground-truth pose, whose contour is the true silhouette
 // (pbr_gt_check proves it to a few hundredths of a pixel for the Blender renders). A line's μ is
 // then the measurement's own error along the outward normal (+ = the image edge is found
 // outside the true contour). Lines are binned by the direction of their normal in the image:
@@ -138,17 +138,12 @@ struct ProbeImages {
   const bcot::Sequence& sequence;
   std::string sequence_dir;
   bool coverage_mask = false;
-  const bcot::AnnotateOptions& options;
-  std::vector<bcot::ChromaSampling> stored_chroma;  // per rig camera, as its files store it
 
-  // The image of camera `v` (rig index) in frame `f`, prepared as the annotation prepares it
-  // (PrepareTrackedImage: restored chroma).
+  // The image of camera `v` (rig index) in frame `f`.
   bcot::StatusOr<cv::Mat3b> Read(int v, int f) const {
-    if (coverage_mask) return CoverageAsImage(sequence_dir, sequence.rig[v].camera.name, f);
-    bcot::StatusOr<cv::Mat3b> image =
-        bcot::ReadCameraImage(sequence.image_paths[v][f], sequence.rig[v].camera);
-    if (!image.ok()) return image;
-    return bcot::PrepareTrackedImage(*image, stored_chroma[v], options);
+    return coverage_mask
+               ? CoverageAsImage(sequence_dir, sequence.rig[v].camera.name, f)
+               : bcot::ReadCameraImage(sequence.image_paths[v][f], sequence.rig[v].camera);
   }
 };
 
@@ -447,16 +442,14 @@ int main(int argc, char** argv) {
   // Each camera's chroma sampling as the annotation resolves it (edge.chroma_sampling); the
   // coverage is full-resolution colour.
   std::vector<ChromaSampling> chroma(sequence->rig.size(), ChromaSampling::Full());
-  std::vector<ChromaSampling> stored_chroma = chroma;
   for (int v = 0; v < sequence->rig.size() && !coverage_mask; ++v) {
     const StatusOr<ChromaSampling> resolved =
         ResolveChromaSampling(*sequence, v, options->chroma_sampling);
     if (!resolved.ok()) return Fail(resolved.status().message());
-    stored_chroma[v] = *resolved;
-    chroma[v] = TrackedChromaSampling(*resolved, *options);
+    chroma[v] = *resolved;
   }
 
-  const ProbeImages images_of{*sequence, sequence_dir, coverage_mask, *options, stored_chroma};
+  const ProbeImages images_of{*sequence, sequence_dir, coverage_mask};
 
   if (!solve_out.empty()) {
     const FrameProblem problem(caster, frame);
@@ -537,9 +530,13 @@ int main(int argc, char** argv) {
       }
       const Silhouette silhouette =
           RenderSilhouette(caster, camera.camera, camera.cam_from_rig * (*gt)[f], ContourOptions{});
+      // Measured as the edge stage's last round measures them (restored chroma with
+      // edge.chroma_restoration).
+      const EdgeImage measured_on =
+          EdgeImageOf(*image, chroma[v], frame.edge.chroma_restoration, silhouette, edge);
       const StatusOr<CorrespondenceLines> lines =
-          BuildEdgeLines(caster, camera.camera, camera.cam_from_rig, rig_from_objcentre, *image,
-                         silhouette, edge, chroma[v]);
+          BuildEdgeLines(caster, camera.camera, camera.cam_from_rig, rig_from_objcentre,
+                         measured_on.image, silhouette, edge, measured_on.sampling);
       if (!lines.ok()) return Fail(lines.status().message());
       if (attribute && !lines->lines.empty()) {
         frame_lines[f][v] = std::make_shared<const CorrespondenceLines>(*lines);
@@ -551,11 +548,12 @@ int main(int argc, char** argv) {
         total[BinOf(line.normal)].Add(line.mean_px);
         if (shift_px > 0.0) {
           EdgeFit inward, outward;
-          const bool found =
-              FitEdgeAcross(*image, linear, line.centre - shift_px * line.normal, line.normal, edge,
-                            &inward, chroma[v]) == EdgeAcross::kFound &&
-              FitEdgeAcross(*image, linear, line.centre + shift_px * line.normal, line.normal, edge,
-                            &outward, chroma[v]) == EdgeAcross::kFound;
+          const bool found = FitEdgeAcross(measured_on.image, linear,
+                                           line.centre - shift_px * line.normal, line.normal, edge,
+                                           &inward, measured_on.sampling) == EdgeAcross::kFound &&
+                             FitEdgeAcross(measured_on.image, linear,
+                                           line.centre + shift_px * line.normal, line.normal, edge,
+                                           &outward, measured_on.sampling) == EdgeAcross::kFound;
           // The image edge's position along the normal from each of the three anchors.
           const double spread =
               found ? std::max({std::abs(inward.mean_px - shift_px - line.mean_px),
@@ -565,8 +563,9 @@ int main(int argc, char** argv) {
           if (spread <= 0.1) stable_bins[BinOf(line.normal)].Add(line.mean_px);
         }
         EdgeFit fit;
-        if (fits != nullptr && FitEdgeAcross(*image, linear, line.centre, line.normal, edge, &fit,
-                                             chroma[v]) == EdgeAcross::kFound) {
+        if (fits != nullptr &&
+            FitEdgeAcross(measured_on.image, linear, line.centre, line.normal, edge, &fit,
+                          measured_on.sampling) == EdgeAcross::kFound) {
           std::fprintf(fits, "%s %d %s %+.4f %.4f %.4f %+.5f\n", camera.camera.name.c_str(), f,
                        kBins[BinOf(line.normal)], fit.mean_px, fit.sigma_px, fit.width_px,
                        fit.step);
@@ -576,8 +575,8 @@ int main(int argc, char** argv) {
                      kBins[BinOf(line.normal)], line.centre.x(), line.centre.y(), line.normal.x(),
                      line.normal.y(), line.mean_px, line.sigma_px);
         for (int k = -half; k <= half; ++k) {
-          const Eigen::Vector3d rgb =
-              SampleLinearRgb(*image, linear, line.centre + k * edge.step_px * line.normal);
+          const Eigen::Vector3d rgb = SampleLinearRgb(measured_on.image, linear,
+                                                      line.centre + k * edge.step_px * line.normal);
           std::fprintf(dump, " %.4f %.4f %.4f", rgb.x(), rgb.y(), rgb.z());
         }
         if (exposure_poses.has_value()) {

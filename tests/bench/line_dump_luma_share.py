@@ -16,35 +16,24 @@ import os
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from compare_line_dumps import line_key  # noqa: E402
+from compare_line_dumps import load_profiles  # noqa: E402
 
 LUMA = np.array([0.2126, 0.7152, 0.0722])
-
-
-def load(path):
-    lines = {}
-    with open(path) as f:
-        for row in f:
-            fields = row.split()
-            end = fields.index("BLUR") if "BLUR" in fields else len(fields)
-            profile = np.array([float(v) for v in fields[9:end]])
-            lines[line_key(fields)] = (float(fields[7]), profile.reshape(-1, 3))
-    return lines
 
 
 def main():
     if len(sys.argv) != 4:
         sys.exit(__doc__)
-    reference, a, b = (load(path) for path in sys.argv[1:])
+    reference, a, b = (load_profiles(path) for path in sys.argv[1:])
     keys = [k for k in reference if k in a and k in b]
     share, da, db = [], [], []
     for k in keys:
-        profile = reference[k][1]
+        profile = reference[k][2]
         quarter = max(1, len(profile) // 4)
         step = profile[-quarter:].mean(0) - profile[:quarter].mean(0)
         share.append(abs(step @ LUMA) / max(np.linalg.norm(step), 1e-9))
-        da.append(abs(a[k][0] - reference[k][0]))
-        db.append(abs(b[k][0] - reference[k][0]))
+        da.append(abs(a[k][1] - reference[k][1]))
+        db.append(abs(b[k][1] - reference[k][1]))
     share, da, db = map(np.array, (share, da, db))
     print(f"| luma share | lines | mean |Δμ| {sys.argv[2]} | mean |Δμ| {sys.argv[3]} |")
     print("|---|---:|---:|---:|")

@@ -206,6 +206,33 @@ TEST(ChromaRestorationTest, LeansOnTheDecodedChromaWhereLumaCannotTellTheColours
   EXPECT_LT(gated_rms, 1.2 * decoded_rms) << decoded_rms << " " << gated_rms << " " << ungated_rms;
 }
 
+// Restoring a region reads only its neighbourhood (ChromaRestorationReachPx): its pixels come out
+// as the whole image's restoration gives them, the other pixels as decoded.
+TEST(ChromaRestorationTest, ARegionIsRestoredAsInTheWholeImage) {
+  const cv::Mat3d clean = EdgeCodes({0.1, 0.25, 1.0}, {0.3, 0.3, 0.3}, 0.4, 0.3, 0.8);
+  const cv::Mat3b decoded =
+      Rounded(SimulateChromaSubsampling(WithNoise(clean, 2.0, 3), ChromaSampling::Jpeg420()));
+  ChromaRestorationOptions own_luma;
+  own_luma.isophote_sigma_px = 0.0;
+  own_luma.radius_px = 2;
+  // An odd origin; grown by the reach, the crop stays off the image's border on every side.
+  const cv::Rect region(23, 21, 31, 17);
+  for (const ChromaRestorationOptions& options : {ChromaRestorationOptions{}, own_luma}) {
+    const int reach = ChromaRestorationReachPx(options);
+    ASSERT_GT(region.x - reach, 0);
+    ASSERT_GT(region.y - reach, 0);
+    ASSERT_LT(region.br().x + reach, decoded.cols);
+    ASSERT_LT(region.br().y + reach, decoded.rows);
+    const cv::Mat3b whole = RestoreSubsampledChroma(decoded, ChromaSampling::Jpeg420(), options);
+    ASSERT_GT(cv::norm(whole(region), decoded(region), cv::NORM_INF), 5.0);
+    cv::Mat3b expected = decoded.clone();
+    whole(region).copyTo(expected(region));
+    const cv::Mat3b part =
+        RestoreSubsampledChroma(decoded, ChromaSampling::Jpeg420(), options, region);
+    EXPECT_LE(cv::norm(part, expected, cv::NORM_INF), 1.0) << "reach " << reach;
+  }
+}
+
 // Where chroma carries nothing (a grey edge), nothing changes beyond rounding.
 TEST(ChromaRestorationTest, LeavesAGreyEdgeAlone) {
   const cv::Mat3d codes = EdgeCodes({0.8, 0.8, 0.8}, {0.05, 0.05, 0.05}, 0.5, 0.3, 0.8);

@@ -333,6 +333,82 @@ TEST(FitEdgeAcrossTest, SubsampledChromaIsCorrectedFor) {
   EXPECT_LT(std::abs(corrected_sum / oblique_cases), 0.03);
 }
 
+// With the restoration on, the edge stage's last round measures a 4:2:0 frame on a copy whose
+// chroma is restored around the contour (EdgeImageOf), read as full colour; off, or with chroma
+// at full resolution, on the frame itself. The pixels away from the contour stay as decoded.
+// Printed beside: where the lines find these clean two-colour edges on the decoded frame read as
+// full colour, with the per-line correction, and on the restored copy (docs/notes/
+// issue12_jpeg_chroma.md, "The restoration moved into the edge stage").
+TEST(EdgeImageOfTest, RestoresTheChromaAroundTheContourOnly) {
+  const Eigen::Vector3d blue(0.55, 0.12, 0.03), orange(0.03, 0.18, 0.6);  // BGR, linear
+  const Eigen::Vector3d dark_blue(0.25, 0.05, 0.01), green(0.05, 0.3, 0.08);
+  ChromaRestorationOptions restoration;
+  restoration.enabled = true;
+  const EdgeLineOptions options;
+  for (const auto& [inside, outside] : {std::pair(blue, orange), std::pair(dark_blue, green)}) {
+    for (double angle_deg : {20.0, 45.0, 70.0}) {
+      SCOPED_TRACE(testing::Message() << (inside == blue ? "blue" : "dark blue") << ", angle "
+                                      << angle_deg);
+      const double angle = angle_deg * M_PI / 180.0;
+      const Eigen::Vector2d normal(std::cos(angle), std::sin(angle)), point(48.25, 48.125);
+      std::vector<unsigned char> bytes;
+      ASSERT_TRUE(cv::imencode(".jpg", ObliqueEdgeImage(point, normal, 0.7, inside, outside),
+                               bytes, {cv::IMWRITE_JPEG_QUALITY, 100}));
+      const cv::Mat3b decoded = cv::imdecode(bytes, cv::IMREAD_COLOR);
+      Silhouette silhouette;  // the contour along the edge, as ErrorsAlongEdge's lines
+      const Eigen::Vector2d tangent(-normal.y(), normal.x());
+      for (double t = -20.0; t <= 20.0; t += 0.5) {
+        ContourPoint contour_point;
+        contour_point.pixel = point + t * tangent;
+        contour_point.normal = normal;
+        contour_point.point_in_object.setZero();
+        silhouette.contour.push_back(contour_point);
+      }
+
+      const EdgeImage off = EdgeImageOf(decoded, ChromaSampling::Jpeg420(),
+                                        ChromaRestorationOptions(), silhouette, options);
+      EXPECT_EQ(off.image.data, decoded.data);
+      EXPECT_TRUE(off.sampling.subsampled());
+      EXPECT_EQ(EdgeImageOf(decoded, ChromaSampling::Full(), restoration, silhouette, options)
+                    .image.data,
+                decoded.data);
+
+      const EdgeImage restored =
+          EdgeImageOf(decoded, ChromaSampling::Jpeg420(), restoration, silhouette, options);
+      EXPECT_FALSE(restored.sampling.subsampled());
+      // The contour's box grown by the lines' window (5 px) and the restoration's reach (19 px).
+      double top = 1e9, bottom = -1e9;
+      for (const ContourPoint& p : silhouette.contour) {
+        top = std::min(top, p.pixel.y());
+        bottom = std::max(bottom, p.pixel.y());
+      }
+      const int first_row = static_cast<int>(top) - 5 - ChromaRestorationReachPx(restoration);
+      const int last_row = static_cast<int>(bottom) + 6 + ChromaRestorationReachPx(restoration);
+      ASSERT_GT(first_row, 0);
+      ASSERT_LT(last_row, decoded.rows - 1);
+      EXPECT_EQ(cv::norm(restored.image.rowRange(0, first_row), decoded.rowRange(0, first_row),
+                         cv::NORM_INF),
+                0.0);
+      EXPECT_EQ(cv::norm(restored.image.rowRange(last_row, decoded.rows),
+                         decoded.rowRange(last_row, decoded.rows), cv::NORM_INF),
+                0.0);
+      EXPECT_GT(cv::norm(restored.image, decoded, cv::NORM_INF), 5.0);
+
+      const EdgeErrors as_full = ErrorsAlongEdge(decoded, point, normal, ChromaSampling::Full());
+      const EdgeErrors corrected =
+          ErrorsAlongEdge(decoded, point, normal, ChromaSampling::Jpeg420());
+      const EdgeErrors on_restored =
+          ErrorsAlongEdge(restored.image, point, normal, restored.sampling);
+      std::printf(
+          "%-9s angle %2.0f: as full colour %+.3f / %.3f px, corrected %+.3f / %.3f px, "
+          "restored %+.3f / %.3f px\n",
+          inside == blue ? "blue" : "dark blue", angle_deg, as_full.mean_px, as_full.rms_px,
+          corrected.mean_px, corrected.rms_px, on_restored.mean_px, on_restored.rms_px);
+      EXPECT_GE(on_restored.found, 0.95);
+    }
+  }
+}
+
 // Changes a view's image before it is tracked, given its camera and the true cam_from_object.
 using ImageEdit =
     std::function<void(const RayCaster&, const Camera&, const Eigen::Isometry3d&, cv::Mat3b*)>;

@@ -40,7 +40,6 @@
 #include <string>
 #include <vector>
 
-#include "bcot/core/chroma_restoration.h"
 #include "bcot/core/option_schema.h"
 #include "bcot/core/status.h"
 #include "bcot/optim/multi_view_tracker.h"
@@ -82,10 +81,6 @@ struct AnnotateOptions {
   MultiViewTrackerOptions tracker;
   ViewSelection views;
   ChromaSamplingSetting chroma_sampling = ChromaSamplingSetting::kAuto;
-  // Frames with subsampled chroma get it back at full resolution from their luma before the
-  // tracker reads them (core/chroma_restoration.h); the edge stage then measures them as 4:4:4.
-  // Off: the decoded frames, and the edge stage's per-line correction (edge_lines.h).
-  ChromaRestorationOptions chroma_restoration;
   QualityOptions quality;
   SymmetryHandling symmetry;
   // The temporal smoothing window after the per-frame solves (off unless enabled).

@@ -169,15 +169,6 @@ std::vector<std::string> CaptureNotes(const Sequence& sequence);
 // kAuto read from the camera's first frame (ReadChromaSampling). Errors name the file.
 StatusOr<ChromaSampling> ResolveChromaSampling(const Sequence& sequence, int index,
                                                ChromaSamplingSetting setting);
-// Whether frames whose files store chroma as `stored` are restored before tracking
-// (options.chroma_restoration on, and chroma subsampled as SimulateChromaSubsampling models).
-bool RestoresChroma(const ChromaSampling& stored, const AnnotateOptions& options);
-// The chroma sampling the tracker sees for such frames: full when they are restored.
-ChromaSampling TrackedChromaSampling(const ChromaSampling& stored, const AnnotateOptions& options);
-// A decoded frame as the tracker reads it: restored (RestoreSubsampledChroma) when
-// RestoresChroma, else as decoded.
-cv::Mat3b PrepareTrackedImage(const cv::Mat3b& decoded, const ChromaSampling& stored,
-                              const AnnotateOptions& options);
 
 // The end of a run, after the poses, frames.csv and config.resolved.yaml are written: the
 // quality files of `quality` (measured on `rig_from_object`; its provenance is set here), then

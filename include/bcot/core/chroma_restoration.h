@@ -28,14 +28,17 @@
 //   Cb and Cr (one weight for both, so that the colour's hue is not split between the two
 //   sources), s0 = hue_slope_codes.
 //
-// On a two-colour edge this removes most of the chroma blur that moves an edge measured in colour
-// (issue 12's vertical bias on 4:2:0 JPEG renders of a saturated object). Its own error is the
-// polynomial's fit of the sRGB bend, about a code, which it adds where the decoded chroma was
-// right already (an edge along the rows at 4:2:2). Where two colours of about equal luma meet
-// (hue edges), luma noise is amplified into chroma; the blend above keeps most of that out, but on
-// small objects the restoration still costs rotation against the per-line correction, and on one
-// small object turning fast it lost two frames end to end, so it is off by default
-// (docs/notes/issue12_jpeg_chroma.md, "Chroma brought back by the luma" and the section after).
+// On 4:2:0 renders of a saturated object it removes most of the chroma blur that moves an edge
+// measured in colour (issue 12's vertical bias). Its own error is the polynomial's fit of the
+// sRGB bend, about a code, which it adds where the decoded chroma was right already (an edge
+// along the rows at 4:2:2). It is not free of bias: on clean oblique edges between two saturated
+// colours, which the decoded frame puts 0.09–0.14 px outside, the edge stage finds the restored
+// edge 0.08–0.13 px inside, where the per-line correction (edge_lines.h) is within 0.04 px
+// (EdgeImageOfTest prints all three). Where two colours of about equal luma meet (hue edges), luma
+// noise is amplified into chroma; the blend above keeps most of that out. The edge stage applies
+// it to its last round only, around the object (EdgeRefineOptions::chroma_restoration), and it
+// is off by default (docs/notes/issue12_jpeg_chroma.md, "Chroma brought back by the luma" and
+// the sections after).
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -77,5 +80,17 @@ struct ChromaRestorationOptions {
 // clamping.
 cv::Mat3b RestoreSubsampledChroma(const cv::Mat3b& decoded, const ChromaSampling& sampling,
                                   const ChromaRestorationOptions& options);
+
+// As above, but only the pixels of `region` (clipped to the image) restored, the others kept as
+// decoded; the work is that of a crop of `region` grown by ChromaRestorationReachPx(options) on
+// each side, and the restored pixels equal those of the whole image's restoration (up to a code
+// of float rounding).
+cv::Mat3b RestoreSubsampledChroma(const cv::Mat3b& decoded, const ChromaSampling& sampling,
+                                  const ChromaRestorationOptions& options, const cv::Rect& region);
+
+// How far (pixels) a restored pixel reads the decoded image: the fit windows and their average
+// (2r), the codec's chroma path (a block and the upsampling's reach), the isophote averaging (the
+// structure tensor's smoothing and the Gaussian along the isophote).
+int ChromaRestorationReachPx(const ChromaRestorationOptions& options);
 
 }  // namespace bcot

@@ -68,6 +68,7 @@
 #include <vector>
 
 #include "bcot/core/camera.h"
+#include "bcot/core/chroma_restoration.h"
 #include "bcot/core/chroma_sampling.h"
 #include "bcot/core/linear_rgb.h"
 #include "bcot/core/status.h"
@@ -208,5 +209,18 @@ StatusOr<CorrespondenceLines> BuildEdgeLines(const RayCaster& caster, const Came
                                              const EdgeLineOptions& options = {},
                                              const ChromaSampling& sampling = ChromaSampling(),
                                              const std::vector<Crease>* creases = nullptr);
+
+// The image a view's edge lines are measured on and how its chroma is to be read there.
+struct EdgeImage {
+  cv::Mat3b image;
+  ChromaSampling sampling;
+};
+// With `restoration` on and `sampling` subsampled as the codec path is simulated, `image` with
+// its chroma restored (RestoreSubsampledChroma) over the box of `silhouette`'s contour grown by
+// the lines' window, and read as 4:4:4 there; otherwise `image` as is (not copied), its lines
+// corrected for `sampling`.
+EdgeImage EdgeImageOf(const cv::Mat3b& image, const ChromaSampling& sampling,
+                      const ChromaRestorationOptions& restoration, const Silhouette& silhouette,
+                      const EdgeLineOptions& options);
 
 }  // namespace bcot

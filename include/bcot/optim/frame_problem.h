@@ -55,6 +55,7 @@
 #include <vector>
 
 #include "bcot/core/camera.h"
+#include "bcot/core/chroma_restoration.h"
 #include "bcot/core/chroma_sampling.h"
 #include "bcot/core/rotational_symmetry.h"
 #include "bcot/core/status.h"
@@ -117,6 +118,12 @@ struct EdgeRefineOptions {
   int min_lines = 20;
   // Measurement along each line.
   EdgeLineOptions lines;
+  // Off (default): a view whose chroma was subsampled has its last round's lines corrected for
+  // the codec's chroma blur, line by line (edge_lines.h). On: the last round measures them on the
+  // view's image with its chroma restored from the luma around the object (EdgeImageOf,
+  // core/chroma_restoration.h) as 4:4:4. The region stage and the earlier rounds read the decoded
+  // image either way (docs/notes/issue12_jpeg_chroma.md).
+  ChromaRestorationOptions chroma_restoration;
   Status Validate() const;
 };
 
