@@ -332,6 +332,13 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "degree of the chroma restoration's polynomial in luma")
       .Range(Closed(1, 4));
   s->Add(
+       "edge.chroma_restoration_ridge",
+       [](auto& o) -> auto& { return o.tracker.frame.edge.chroma_restoration.ridge_luma_codes2; },
+       "codes^2",
+       "ridge on the chroma restoration's polynomial coefficients, in luma codes squared (a "
+       "window whose luma varies by less keeps its mean chroma)")
+      .Range(Positive());
+  s->Add(
        "edge.chroma_restoration_isophote_sigma_px",
        [](auto& o) -> auto& { return o.tracker.frame.edge.chroma_restoration.isophote_sigma_px; },
        "px",
