@@ -110,8 +110,8 @@ StatusOr<std::map<int, Eigen::Isometry3d>> AnchorPoses(const Sequence& sequence,
   return anchors;
 }
 
-// Indices into the rig of the cameras the options' `views` ask for, with their weights and
-// chroma sampling.
+// The tracked views of the cameras the options' `views` ask for (their weights, and how their
+// files store chroma), and the cameras' indices into the rig.
 StatusOr<std::vector<TrackedView>> SelectViews(const Sequence& sequence,
                                                const AnnotateOptions& options,
                                                std::vector<int>* rig_indices) {

@@ -376,14 +376,14 @@ TEST(EdgeImageOfTest, RestoresTheChromaAroundTheContourOnly) {
       const EdgeImage restored =
           EdgeImageOf(decoded, ChromaSampling::Jpeg420(), restoration, silhouette, options);
       EXPECT_FALSE(restored.sampling.subsampled());
-      // The contour's box grown by the lines' window (5 px) and the restoration's reach (19 px).
+      // Only the contour's box grown by the lines' window and a pixel (5 px) is written.
       double top = 1e9, bottom = -1e9;
       for (const ContourPoint& p : silhouette.contour) {
         top = std::min(top, p.pixel.y());
         bottom = std::max(bottom, p.pixel.y());
       }
-      const int first_row = static_cast<int>(top) - 5 - ChromaRestorationReachPx(restoration);
-      const int last_row = static_cast<int>(bottom) + 6 + ChromaRestorationReachPx(restoration);
+      const int first_row = static_cast<int>(std::floor(top)) - 6;
+      const int last_row = static_cast<int>(std::ceil(bottom)) + 7;
       ASSERT_GT(first_row, 0);
       ASSERT_LT(last_row, decoded.rows - 1);
       EXPECT_EQ(cv::norm(restored.image.rowRange(0, first_row), decoded.rowRange(0, first_row),

@@ -34,11 +34,11 @@
 // along the rows at 4:2:2). It is not free of bias: on clean oblique edges between two saturated
 // colours, which the decoded frame puts 0.09–0.14 px outside, the edge stage finds the restored
 // edge 0.08–0.13 px inside, where the per-line correction (edge_lines.h) is within 0.04 px
-// (EdgeImageOfTest prints all three): the ridge below shrinks the colour curve's bend. Where two colours of about equal luma meet (hue edges), luma
-// noise is amplified into chroma; the blend above keeps most of that out. The edge stage applies
-// it to its last round only, around the object (EdgeRefineOptions::chroma_restoration), and it
-// is off by default (docs/notes/issue12_jpeg_chroma.md, "Chroma brought back by the luma" and
-// the sections after).
+// (EdgeImageOfTest prints all three): the ridge below shrinks the colour curve's bend. Where two
+// colours of about equal luma meet (hue edges), luma noise is amplified into chroma; the blend
+// above keeps most of that out. The edge stage applies it to its last round only, around the
+// object (EdgeRefineOptions::chroma_restoration), and it is off by default
+// (docs/notes/issue12_jpeg_chroma.md, "Chroma brought back by the luma" and the sections after).
 #pragma once
 
 #include <opencv2/core.hpp>
