@@ -337,8 +337,9 @@ TEST(FitEdgeAcrossTest, SubsampledChromaIsCorrectedFor) {
 // chroma is restored around the contour (EdgeImageOf), read as full colour; off, or with chroma
 // at full resolution, on the frame itself. The pixels away from the contour stay as decoded.
 // Printed beside: where the lines find these clean two-colour edges on the decoded frame read as
-// full colour, with the per-line correction, and on the restored copy (docs/notes/
-// issue12_jpeg_chroma.md, "The restoration moved into the edge stage").
+// full colour, with the per-line correction, and on the restored copy, at the default ridge and
+// at 0.01 codes² (docs/notes/issue12_jpeg_chroma.md, "The restoration moved into the edge
+// stage").
 TEST(EdgeImageOfTest, RestoresTheChromaAroundTheContourOnly) {
   const Eigen::Vector3d blue(0.55, 0.12, 0.03), orange(0.03, 0.18, 0.6);  // BGR, linear
   const Eigen::Vector3d dark_blue(0.25, 0.05, 0.01), green(0.05, 0.3, 0.08);
@@ -399,11 +400,18 @@ TEST(EdgeImageOfTest, RestoresTheChromaAroundTheContourOnly) {
           ErrorsAlongEdge(decoded, point, normal, ChromaSampling::Jpeg420());
       const EdgeErrors on_restored =
           ErrorsAlongEdge(restored.image, point, normal, restored.sampling);
+      ChromaRestorationOptions small_ridge = restoration;
+      small_ridge.ridge_luma_codes2 = 0.01;
+      const EdgeImage restored_small_ridge =
+          EdgeImageOf(decoded, ChromaSampling::Jpeg420(), small_ridge, silhouette, options);
+      const EdgeErrors on_small_ridge = ErrorsAlongEdge(restored_small_ridge.image, point, normal,
+                                                        restored_small_ridge.sampling);
       std::printf(
           "%-9s angle %2.0f: as full colour %+.3f / %.3f px, corrected %+.3f / %.3f px, "
-          "restored %+.3f / %.3f px\n",
+          "restored %+.3f / %.3f px (ridge 0.01: %+.3f / %.3f px)\n",
           inside == blue ? "blue" : "dark blue", angle_deg, as_full.mean_px, as_full.rms_px,
-          corrected.mean_px, corrected.rms_px, on_restored.mean_px, on_restored.rms_px);
+          corrected.mean_px, corrected.rms_px, on_restored.mean_px, on_restored.rms_px,
+          on_small_ridge.mean_px, on_small_ridge.rms_px);
       EXPECT_GE(on_restored.found, 0.95);
     }
   }

@@ -34,7 +34,8 @@
 // along the rows at 4:2:2). It is not free of bias: on clean oblique edges between two saturated
 // colours, which the decoded frame puts 0.09–0.14 px outside, the edge stage finds the restored
 // edge 0.08–0.13 px inside, where the per-line correction (edge_lines.h) is within 0.04 px
-// (EdgeImageOfTest prints all three): the ridge below shrinks the colour curve's bend. Where two
+// (EdgeImageOfTest prints all three; the cause is not found: a much smaller ridge takes the
+// polynomial's own shortfall at the edge's centre out but moves these edges little). Where two
 // colours of about equal luma meet (hue edges), luma noise is amplified into chroma; the blend
 // above keeps most of that out. The edge stage applies it to its last round only, around the
 // object (EdgeRefineOptions::chroma_restoration), and it is off by default
@@ -59,10 +60,9 @@ struct ChromaRestorationOptions {
   // line between a saturated and a grey colour by up to 6 codes, 3 brings that under about 1.3.
   int degree = 3;
   // Ridge on the polynomial's coefficients, in luma codes² (a window whose luma varies by less
-  // keeps its mean chroma). It also shrinks the bend of a strong edge's colour curve, which is
-  // what puts the restored edge inside (header); smaller values halve a saturated object's
-  // depth bias and cost noisy small objects rotation (issue12_jpeg_chroma.md, "The restoration
-  // moved into the edge stage").
+  // keeps its mean chroma). It also shrinks the bend of a strong edge's colour curve; smaller
+  // values halve a saturated object's depth bias and cost noisy small objects rotation
+  // (issue12_jpeg_chroma.md, "The restoration moved into the edge stage").
   double ridge_luma_codes2 = 4.0;
   // Floor of a window's misfit (mean squared chroma residual, codes²) in its weight.
   double misfit_floor_codes2 = 0.1;
