@@ -20,13 +20,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
                                 "scripts", "pbr"))
 import jpeg_variants as jv  # noqa: E402
+import pbr_common as pc  # noqa: E402
 from chroma_luma_guided import fit_planes  # noqa: E402
-
-
-def srgb_codes(linear):
-    encoded = np.where(linear <= 0.0031308, 12.92 * linear,
-                       1.055 * np.maximum(linear, 0.0) ** (1.0 / 2.4) - 0.055)
-    return 255.0 * encoded
 
 
 def main():
@@ -37,7 +32,7 @@ def main():
     distance = (cols - 48.25) * math.cos(angle) + (rows - 48.125) * math.sin(angle)
     outside_share = 0.5 * (1.0 + np.vectorize(math.erf)(distance / (0.7 * math.sqrt(2.0))))
     linear = inside + (outside - inside) * outside_share[..., None]
-    y, cb, cr = jv.to_ycbcr(np.round(srgb_codes(linear)))
+    y, cb, cr = jv.to_ycbcr(np.round(255.0 * pc.srgb_encode(linear)))
     decoded_cb, decoded_cr = jv.subsample(cb), jv.subsample(cr)
     interior = (cols > 8) & (cols < 88) & (rows > 8) & (rows < 88)
     bins = np.arange(-2.0, 2.0, 0.5)
