@@ -231,7 +231,8 @@ TEST(FitEdgeAcrossTest, EdgesAreDecodedWithTheCameraResponse) {
 }
 
 // A straight edge through `point` with outward unit `normal` (inside, `inside` linear BGR; the
-// other side `outside`), blurred by a Gaussian of σ = blur_px and sRGB-encoded.
+// other side `outside`), blurred by a Gaussian of σ = blur_px, clipped to full scale by the
+// sensor and sRGB-encoded.
 cv::Mat3b ObliqueEdgeImage(const Eigen::Vector2d& point, const Eigen::Vector2d& normal,
                            double blur_px, const Eigen::Vector3d& inside,
                            const Eigen::Vector3d& outside) {
@@ -241,7 +242,8 @@ cv::Mat3b ObliqueEdgeImage(const Eigen::Vector2d& point, const Eigen::Vector2d& 
       const double distance = normal.dot(Eigen::Vector2d(x, y) - point);
       const double outside_fraction = 0.5 * std::erfc(-distance / (blur_px * std::sqrt(2.0)));
       for (int c = 0; c < 3; ++c) {
-        const double linear = inside[c] + (outside[c] - inside[c]) * outside_fraction;
+        const double linear =
+            std::min(1.0, inside[c] + (outside[c] - inside[c]) * outside_fraction);
         const double encoded =
             linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
         image(y, x)[c] = static_cast<unsigned char>(std::lround(255.0 * encoded));
@@ -331,6 +333,54 @@ TEST(FitEdgeAcrossTest, SubsampledChromaIsCorrectedFor) {
   }
   EXPECT_GT(uncorrected_sum / oblique_cases, 0.1);
   EXPECT_LT(std::abs(corrected_sum / oblique_cases), 0.03);
+}
+
+// A 4:2:0 JPEG of a lit orange surface whose red is beyond full scale: the sensor clips the
+// blurred red step after the optics, so its clipped top reaches towards the wall, and the codec
+// carries that shape into the decoded green and blue (whose chroma they share), where the edge
+// is measured. Drawn at full scale in the codec's simulation, the red made the correction wrong
+// by 0.11–0.40 px outward (on average +0.20 px at 1.6× full scale, +0.32 px at 3×); the
+// correction now fits the level above full scale (edge_lines.h, "Subsampled chroma"), so the edge
+// is found within 0.1 px in every case and within 0.03 px on average, as for the same surface
+// below full scale. The fit on the decoded frame itself (before the correction) fails on up to a
+// tenth of the lines of a channel at 3× full scale: their green and blue are too far from a
+// blurred step.
+constexpr double kCorrectedClippedChromaPx = 0.1;
+
+TEST(FitEdgeAcrossTest, SubsampledChromaOfAClippedChannelIsCorrectedFor) {
+  const Eigen::Vector3d wall(0.22, 0.16, 0.10);  // BGR, linear
+  const double reds[] = {0.9, 1.6, 3.0};
+  double sums[3] = {0.0, 0.0, 0.0};
+  int cases = 0;
+  for (double angle_deg : {20.0, 45.0, 70.0}) {
+    for (double offset : {0.0, 0.25, 0.5, 0.75}) {
+      const double angle = angle_deg * M_PI / 180.0;
+      const Eigen::Vector2d normal(std::cos(angle), std::sin(angle));
+      const Eigen::Vector2d point(48.0 + offset, 48.0 + 0.5 * offset);
+      EdgeErrors errors[3];
+      for (int k = 0; k < 3; ++k) {
+        SCOPED_TRACE(testing::Message()
+                     << "angle " << angle_deg << ", offset " << offset << ", red " << reds[k]);
+        const cv::Mat3b image =
+            ObliqueEdgeImage(point, normal, 0.7, Eigen::Vector3d(0.04, 0.30, reds[k]), wall);
+        std::vector<unsigned char> bytes;
+        ASSERT_TRUE(cv::imencode(".jpg", image, bytes, {cv::IMWRITE_JPEG_QUALITY, 100}));
+        errors[k] = ErrorsAlongEdge(cv::imdecode(bytes, cv::IMREAD_COLOR), point, normal,
+                                    ChromaSampling::Jpeg420());
+        EXPECT_GE(errors[k].found, reds[k] < 1.0 ? 0.95 : 0.85);
+        EXPECT_LT(std::abs(errors[k].mean_px),
+                  reds[k] < 1.0 ? kCorrectedChromaMeanPx : kCorrectedClippedChromaPx);
+        sums[k] += errors[k].mean_px;
+      }
+      std::printf(
+          "angle %2.0f offset %.2f, corrected: red 0.9 %+.3f px (%.0f %% found), 1.6 %+.3f px "
+          "(%.0f %%), 3.0 %+.3f px (%.0f %%)\n",
+          angle_deg, offset, errors[0].mean_px, 100.0 * errors[0].found, errors[1].mean_px,
+          100.0 * errors[1].found, errors[2].mean_px, 100.0 * errors[2].found);
+      ++cases;
+    }
+  }
+  for (double sum : sums) EXPECT_LT(std::abs(sum / cases), 0.03);
 }
 
 // With the restoration on, the edge stage's last round measures a 4:2:0 frame on a copy whose
