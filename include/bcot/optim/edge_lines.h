@@ -48,15 +48,17 @@
 // simulations). The shift is its decoded fit's μ minus the same fit's μ on the drawing without
 // the codec; σ_μ is divided by the decoded centre's sensitivity to the edge's position.
 // Quantisation is left as noise.
-//   A channel clipped on one side of the line (see "Clipping") is left out of the fit but not out
-// of the codec: its clipped step enters the other channels through the chroma they share, and its
-// shape depends on how far above full scale the light is (a lit orange surface with its red at
-// 1.6× full scale, drawn at full scale, was found 0.2 px outside). On such a line the ideal edge
-// is found by analysis by synthesis instead: its centre, width and the saturated side's level L
-// (in [1, 16] full scales; drawn, blurred, then clipped) by Levenberg-Marquardt on the observed
-// minus the decoded drawing's samples, all three channels within fit_half_px (forward-difference
-// Jacobian, two rounds of at most three steps, the colours beyond ±1.5 px updated between them).
-// The shift is taken as above from that edge, σ_μ left as fitted.
+//   A channel clipped on the object's side of the line (see "Clipping") is left out of the fit
+// but not out of the codec: its clipped step enters the other channels through the chroma they
+// share, and its shape depends on how far above full scale the light is (a lit orange surface
+// with its red at 1.6× full scale, drawn at full scale, was found 0.2 px outside). On such a line
+// the ideal edge is found by analysis by synthesis instead: its centre, width and the clipped
+// channels' inside levels L (in [1, 16] full scales; drawn, blurred, then clipped) by
+// Levenberg-Marquardt on the observed minus the decoded drawing's samples, all three channels
+// within fit_half_px (forward-difference Jacobian, two rounds of at most three steps, the colours
+// beyond ±1.5 px updated between them). The shift is taken as above from that edge, σ_μ left as
+// fitted. A background clipped in a channel is drawn at full scale as before (modelled, it moved
+// a glossy object's edges outward: edge_lines.cc, SaturatedInsideChannels).
 //
 // The line becomes a CorrespondenceLine with mean_px = μ and sigma_px = σ_μ, so the pose stage
 // reuses CorrespondenceLineCostFunction: r = (n·(x_X(T) − x0) − μ)/σ.
