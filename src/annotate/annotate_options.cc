@@ -289,6 +289,11 @@ void DeclareEdge(OptionSchema<AnnotateOptions>* s) {
        "linear level (1 = full scale) from which a colour sample counts as clipped by the "
        "sensor and is left out of that line's contrast (> 1 = never)")
       .Range(Closed(0.5, 2));
+  s->Add(
+      "edge.saturated_level_fit",
+      [](auto& o) -> auto& { return o.tracker.frame.edge.lines.saturated_level_fit; }, "",
+      "with subsampled chroma, fit how far above full scale a channel clipped on the object's "
+      "side is, for the codec's simulation (false: drawn at full scale)");
   s->AddChoice(
        "edge.response", [](auto& o) -> auto& { return o.tracker.frame.edge.lines.response.kind; },
        Choices<ImageResponse::Kind>{{"srgb", ImageResponse::Kind::kSrgb},

@@ -686,7 +686,7 @@ std::vector<std::string> CaptureNotes(const Sequence& sequence) {
       "and shifts the edges the annotation is measured on; the edge stage takes part of the "
       "shift off (edge.chroma_sampling), but on our renders the rotation error was still a "
       "third to a half above PNG frames', and a saturated object whose red clipped sat "
-      "0.07-0.08 mm too high in both cameras; record PNG or 4:4:4 JPEG if you can "
+      "0.05-0.06 mm too high in both cameras; record PNG or 4:4:4 JPEG if you can "
       "(docs/notes/issue12_jpeg_chroma.md)",
       fmt::join(subsampled, ", "))};
 }

@@ -614,7 +614,9 @@ bool ChromaSubsamplingShift(const EdgeLineSamples& samples, const EdgeFit& fit,
   const LineSimulator simulator(table, centre, normal, samples.peak, options, sampling);
   IdealEdge edge{observed_inside, observed_outside, fit.mean_px, fit.width_px};
   std::vector<int> saturated =
-      SaturatedInsideChannels(samples.peak, observed_inside, observed_outside, options);
+      options.saturated_level_fit
+          ? SaturatedInsideChannels(samples.peak, observed_inside, observed_outside, options)
+          : std::vector<int>();
   if (!saturated.empty()) {
     // The edge by analysis by synthesis, then the codec's shift of the observed fit from it (so
     // that what the fit makes of a shading ramp, outside the ideal edge, stays in the fit).

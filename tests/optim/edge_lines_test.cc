@@ -262,15 +262,16 @@ struct EdgeErrors {
   double found = 0.0;
 };
 EdgeErrors ErrorsAlongEdge(const cv::Mat3b& image, const Eigen::Vector2d& point,
-                           const Eigen::Vector2d& normal, const ChromaSampling& sampling) {
+                           const Eigen::Vector2d& normal, const ChromaSampling& sampling,
+                           const EdgeLineOptions& options = EdgeLineOptions()) {
   const Eigen::Vector2d tangent(-normal.y(), normal.x());
   double sum = 0.0, squares = 0.0;
   int lines = 0, found = 0;
   for (double t = -20.0; t <= 20.0; t += 0.5) {
     ++lines;
     EdgeFit fit;
-    if (FitEdgeAcross(image, LinearTable(), point + t * tangent, normal, EdgeLineOptions(), &fit,
-                      sampling) != EdgeAcross::kFound) {
+    if (FitEdgeAcross(image, LinearTable(), point + t * tangent, normal, options, &fit, sampling) !=
+        EdgeAcross::kFound) {
       continue;
     }
     sum += fit.mean_px;
@@ -338,19 +339,21 @@ TEST(FitEdgeAcrossTest, SubsampledChromaIsCorrectedFor) {
 // A 4:2:0 JPEG of a lit orange surface whose red is beyond full scale: the sensor clips the
 // blurred red step after the optics, so its clipped top reaches towards the wall, and the codec
 // carries that shape into the decoded green and blue (whose chroma they share), where the edge
-// is measured. Drawn at full scale in the codec's simulation, the red made the correction wrong
-// by 0.11–0.40 px outward (on average +0.20 px at 1.6× full scale, +0.32 px at 3×); the
-// correction now fits the level above full scale (edge_lines.h, "Subsampled chroma"), so the edge
-// is found within 0.1 px in every case and within 0.03 px on average, as for the same surface
-// below full scale. The fit on the decoded frame itself (before the correction) fails on up to a
-// tenth of the lines of a channel at 3× full scale: their green and blue are too far from a
+// is measured. Drawn at full scale in the codec's simulation (edge.saturated_level_fit off), the
+// red makes the correction wrong by 0.11–0.40 px outward (on average +0.20 px at 1.6× full scale,
+// +0.32 px at 3×); with the level above full scale fitted (edge_lines.h, "Subsampled chroma"),
+// the edge is found within 0.1 px in every case and within 0.03 px on average, as for the same
+// surface below full scale. The fit on the decoded frame itself (before the correction) fails on up
+// to a tenth of the lines of a channel at 3× full scale: their green and blue are too far from a
 // blurred step.
 constexpr double kCorrectedClippedChromaPx = 0.1;
 
 TEST(FitEdgeAcrossTest, SubsampledChromaOfAClippedChannelIsCorrectedFor) {
   const Eigen::Vector3d wall(0.22, 0.16, 0.10);  // BGR, linear
   const double reds[] = {0.9, 1.6, 3.0};
-  double sums[3] = {0.0, 0.0, 0.0};
+  EdgeLineOptions at_full_scale;
+  at_full_scale.saturated_level_fit = false;
+  double sums[3] = {0.0, 0.0, 0.0}, full_scale_sums[3] = {0.0, 0.0, 0.0};
   int cases = 0;
   for (double angle_deg : {20.0, 45.0, 70.0}) {
     for (double offset : {0.0, 0.25, 0.5, 0.75}) {
@@ -365,8 +368,11 @@ TEST(FitEdgeAcrossTest, SubsampledChromaOfAClippedChannelIsCorrectedFor) {
             ObliqueEdgeImage(point, normal, 0.7, Eigen::Vector3d(0.04, 0.30, reds[k]), wall);
         std::vector<unsigned char> bytes;
         ASSERT_TRUE(cv::imencode(".jpg", image, bytes, {cv::IMWRITE_JPEG_QUALITY, 100}));
-        errors[k] = ErrorsAlongEdge(cv::imdecode(bytes, cv::IMREAD_COLOR), point, normal,
-                                    ChromaSampling::Jpeg420());
+        const cv::Mat3b decoded = cv::imdecode(bytes, cv::IMREAD_COLOR);
+        errors[k] = ErrorsAlongEdge(decoded, point, normal, ChromaSampling::Jpeg420());
+        full_scale_sums[k] +=
+            ErrorsAlongEdge(decoded, point, normal, ChromaSampling::Jpeg420(), at_full_scale)
+                .mean_px;
         EXPECT_GE(errors[k].found, reds[k] < 1.0 ? 0.95 : 0.85);
         EXPECT_LT(std::abs(errors[k].mean_px),
                   reds[k] < 1.0 ? kCorrectedChromaMeanPx : kCorrectedClippedChromaPx);
@@ -380,7 +386,15 @@ TEST(FitEdgeAcrossTest, SubsampledChromaOfAClippedChannelIsCorrectedFor) {
       ++cases;
     }
   }
-  for (double sum : sums) EXPECT_LT(std::abs(sum / cases), 0.03);
+  for (int k = 0; k < 3; ++k) {
+    std::printf("red %.1f: mean %+.3f px fitted, %+.3f px drawn at full scale\n", reds[k],
+                sums[k] / cases, full_scale_sums[k] / cases);
+    EXPECT_LT(std::abs(sums[k] / cases), 0.03);
+  }
+  // Below full scale the option changes nothing; above, drawing at full scale is 0.1 px off.
+  EXPECT_DOUBLE_EQ(full_scale_sums[0], sums[0]);
+  EXPECT_GT(full_scale_sums[1] / cases, 0.1);
+  EXPECT_GT(full_scale_sums[2] / cases, 0.1);
 }
 
 // With the restoration on, the edge stage's last round measures a 4:2:0 frame on a copy whose

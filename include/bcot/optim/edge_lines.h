@@ -118,6 +118,11 @@ struct EdgeLineOptions {
   // Linear level (1 = full scale) at or above which a channel's sample counts as clipped by
   // the sensor (see "Clipping" above); > 1 = never.
   double clip_level = 0.95;
+  // With subsampled chroma, fit the level above full scale of a channel clipped on the object's
+  // side, which the codec's simulation then draws, blurs and clips ("Subsampled chroma" above);
+  // off: it is drawn at full scale (JPEG 4:2:0 Cycles plastic bunny, bias y cam0 / cam1 −0.072 /
+  // −0.081 → −0.048 / −0.060 mm, z cam0 −0.117 → −0.070 mm; docs/notes/issue12_jpeg_chroma.md).
+  bool saturated_level_fit = true;
   // How the images' 8-bit codes map to linear light: the camera's response (linear_rgb.h).
   ImageResponse response;
   // Also measure the edges along the occlusion contours inside the silhouette
