@@ -344,7 +344,7 @@ TEST(FitEdgeAcrossTest, SubsampledChromaIsCorrectedFor) {
 // +0.32 px at 3×); with the level above full scale fitted (edge_lines.h, "Subsampled chroma"),
 // the edge is found within 0.1 px in every case and within 0.03 px on average, as for the same
 // surface below full scale. The fit on the decoded frame itself (before the correction) fails on up
-// to a tenth of the lines of a channel at 3× full scale: their green and blue are too far from a
+// to 11 % of the lines of a channel at 3× full scale: their green and blue are too far from a
 // blurred step.
 constexpr double kCorrectedClippedChromaPx = 0.1;
 
