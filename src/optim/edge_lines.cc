@@ -443,15 +443,13 @@ bool FitSimulatedEdge(const EdgeLineSamples& samples, const EdgeLineOptions& opt
 // but put the small glossy bunny's 0.10 px outside them (from 0.03 px inside; also on its
 // 4:2:0 copy without quantisation), where the glossy rim mirrors that background and no
 // constant inside colour draws it (docs/notes/issue12_jpeg_chroma.md).
-std::vector<int> SaturatedInsideChannels(const Eigen::Vector3d& peak, const Eigen::Vector3d& inside,
+// (A plateau at clip_level has its line's peak there too: the peak bounds every sample.)
+std::vector<int> SaturatedInsideChannels(const Eigen::Vector3d& inside,
                                          const Eigen::Vector3d& outside,
                                          const EdgeLineOptions& options) {
   std::vector<int> channels;
   for (int c = 0; c < 3; ++c) {
-    if (peak[c] >= options.clip_level && inside[c] >= options.clip_level &&
-        outside[c] < options.clip_level) {
-      channels.push_back(c);
-    }
+    if (inside[c] >= options.clip_level && outside[c] < options.clip_level) channels.push_back(c);
   }
   return channels;
 }
@@ -474,10 +472,16 @@ class SaturatedEdgeFit {
   SaturatedEdgeFit(const EdgeLineSamples& observed, double centre_px, std::vector<int> channels,
                    const LineSimulator& simulator, const EdgeLineOptions& options)
       : observed_(observed),
-        centre_px_(centre_px),
         channels_(std::move(channels)),
         simulator_(simulator),
-        options_(options) {}
+        options_(options) {
+    const int half = static_cast<int>(observed.colors.size() / 2);
+    for (int k = 0; k < static_cast<int>(observed.colors.size()); ++k) {
+      if (std::abs((k - half) * options.step_px - centre_px) <= options.fit_half_px) {
+        window_.push_back(k);
+      }
+    }
+  }
 
   void Run(const Eigen::Vector3d& observed_inside, const Eigen::Vector3d& observed_outside,
            IdealEdge* edge) const {
@@ -490,10 +494,9 @@ class SaturatedEdgeFit {
                           &decoded_inside, &decoded_outside)) {
         return;
       }
-      std::vector<double> levels;
-      for (int c : channels_) levels.push_back(edge->inside[c]);
+      const Eigen::Vector3d levels = edge->inside;
       StepColours(observed_inside, observed_outside, decoded_inside, decoded_outside, edge);
-      for (size_t i = 0; i < channels_.size(); ++i) edge->inside[channels_[i]] = levels[i];
+      for (int c : channels_) edge->inside[c] = levels[c];
     }
   }
 
@@ -523,19 +526,14 @@ class SaturatedEdgeFit {
     return result;
   }
 
-  // The observed minus the decoded drawing's samples within fit_half_px of centre_px_, all
-  // three channels.
+  // The observed minus the decoded drawing's samples over window_, all three channels.
   Eigen::VectorXd Residuals(const IdealEdge& edge) const {
     const EdgeLineSamples predicted = simulator_.SampleDecoded(simulator_.Draw(edge));
-    const int half = static_cast<int>(observed_.colors.size() / 2);
-    Eigen::VectorXd r(3 * observed_.colors.size());
-    int n = 0;
-    for (int k = 0; k < static_cast<int>(observed_.colors.size()); ++k) {
-      if (std::abs((k - half) * options_.step_px - centre_px_) > options_.fit_half_px) continue;
-      r.segment<3>(n) = observed_.colors[k] - predicted.colors[k];
-      n += 3;
+    Eigen::VectorXd r(3 * window_.size());
+    for (size_t i = 0; i < window_.size(); ++i) {
+      r.segment<3>(3 * i) = observed_.colors[window_[i]] - predicted.colors[window_[i]];
     }
-    return r.head(n);
+    return r;
   }
 
   // Levenberg-Marquardt steps from `edge`. The Jacobian at the start serves every step (chord
@@ -583,7 +581,7 @@ class SaturatedEdgeFit {
   }
 
   const EdgeLineSamples& observed_;
-  double centre_px_;
+  std::vector<int> window_;    // the samples within fit_half_px of the observed centre
   std::vector<int> channels_;  // saturated on the inside
   const LineSimulator& simulator_;
   const EdgeLineOptions& options_;
@@ -615,7 +613,7 @@ bool ChromaSubsamplingShift(const EdgeLineSamples& samples, const EdgeFit& fit,
   IdealEdge edge{observed_inside, observed_outside, fit.mean_px, fit.width_px};
   std::vector<int> saturated =
       options.saturated_level_fit
-          ? SaturatedInsideChannels(samples.peak, observed_inside, observed_outside, options)
+          ? SaturatedInsideChannels(observed_inside, observed_outside, options)
           : std::vector<int>();
   if (!saturated.empty()) {
     // The edge by analysis by synthesis, then the codec's shift of the observed fit from it (so
