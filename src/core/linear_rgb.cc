@@ -101,21 +101,6 @@ LinearTable::LinearTable(const ImageResponse& response) {
   }
 }
 
-double LinearTable::Decode(double code) const {
-  const double c = std::clamp(code, 0.0, 255.0);
-  const int k = std::min(static_cast<int>(c), 254);
-  return table_[k] + (c - k) * (table_[k + 1] - table_[k]);
-}
-
-double LinearTable::Encode(double linear) const {
-  if (!(linear > table_[0])) return 0.0;
-  if (linear >= table_[255]) return 255.0;
-  // table_[k] <= linear < table_[k + 1] (table_[255] = 1, so the bucket exists).
-  int k = bucket_code_[std::min(static_cast<int>(linear * kBuckets), kBuckets - 1)];
-  while (table_[k + 1] <= linear) ++k;
-  return k + (linear - table_[k]) / (table_[k + 1] - table_[k]);
-}
-
 Eigen::Vector3d SampleLinearRgb(const cv::Mat3b& image, const LinearTable& lut,
                                 const Eigen::Vector2d& p) {
   const int x0 = static_cast<int>(std::floor(p.x()));

@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -271,11 +272,6 @@ struct IdealEdge {
   Eigen::Vector3d outside = Eigen::Vector3d::Zero();
   double mean_px = 0.0;
   double width_px = 1.0;
-
-  // Linear RGB at offset s (px) along the normal, before the clip.
-  Eigen::Vector3d At(double s) const {
-    return inside + (outside - inside) * NormalCdf((s - mean_px) / width_px);
-  }
 };
 
 // The samples of the line through `centre` along `normal` on `patch` (BGR codes, its pixel
@@ -348,30 +344,45 @@ cv::Size LinePatch(const Eigen::Vector2d& centre, const Eigen::Vector2d& normal,
   return cv::Size(end.x() - origin->x(), end.y() - origin->y());
 }
 
+// The nodes DrawIdealEdge tabulates an edge at, in blur widths from its centre: z_i = −4 + i/8.
+// Spacing w/8 keeps linear interpolation of Φ within 6e-4 of it; beyond 4w, Φ is within 3e-5 of
+// 0 or 1 (the end values).
+constexpr double kDrawReach = 4.0;
+constexpr double kDrawSpacing = 1.0 / 8.0;
+constexpr int kDrawNodes = 65;
+static_assert(kDrawNodes == static_cast<int>(2.0 * kDrawReach / kDrawSpacing) + 1);
+
+// Φ(z_i) at DrawIdealEdge's nodes; the same for every edge, so computed once.
+const std::array<double, kDrawNodes>& StandardNormalNodes() {
+  static const std::array<double, kDrawNodes> cdf = [] {
+    std::array<double, kDrawNodes> values{};
+    for (int i = 0; i < kDrawNodes; ++i) values[i] = NormalCdf(-kDrawReach + i * kDrawSpacing);
+    return values;
+  }();
+  return cdf;
+}
+
 // `edge` drawn as BGR codes on the pixels of an image around the line through `centre` along
 // `normal`, its pixel (0, 0) at `origin`; linear values above full scale are clipped to code 255.
 cv::Mat3d DrawIdealEdge(const IdealEdge& edge, const LinearTable& table,
                         const Eigen::Vector2i& origin, const cv::Size& size,
                         const Eigen::Vector2d& centre, const Eigen::Vector2d& normal) {
-  // The codes as a function of s, tabulated finely enough for linear interpolation to stay far
-  // below a code's step (spacing w/8: |ΔΦ| <= 6e-4) over the blur's reach (beyond 4w, Φ is within
-  // 3e-5 of 0 or 1: the end values).
-  const double reach = 4.0 * edge.width_px;
-  const double spacing = edge.width_px / 8.0;
-  const int nodes = static_cast<int>(std::ceil(2.0 * reach / spacing)) + 1;
-  const double first = edge.mean_px - reach;
-  std::vector<cv::Vec3d> tabulated(nodes);
-  for (int i = 0; i < nodes; ++i) {
-    const Eigen::Vector3d rgb = edge.At(first + i * spacing);
+  // The codes as a function of s, tabulated at the nodes s_i = μ + z_i·w (StandardNormalNodes:
+  // linear interpolation between them stays far below a code's step) and constant beyond them.
+  const std::array<double, kDrawNodes>& cdf = StandardNormalNodes();
+  std::array<cv::Vec3d, kDrawNodes> tabulated;
+  for (int i = 0; i < kDrawNodes; ++i) {
+    const Eigen::Vector3d rgb = edge.inside + (edge.outside - edge.inside) * cdf[i];
     tabulated[i] = cv::Vec3d(table.Encode(rgb[2]), table.Encode(rgb[1]), table.Encode(rgb[0]));
   }
   cv::Mat3d codes(size);
-  const double inv_spacing = 1.0 / spacing;
+  const double first = edge.mean_px - kDrawReach * edge.width_px;
+  const double inv_spacing = 1.0 / (kDrawSpacing * edge.width_px);
   for (int y = 0; y < size.height; ++y) {
     for (int x = 0; x < size.width; ++x) {
       const double s = normal.dot(Eigen::Vector2d(origin.x() + x, origin.y() + y) - centre);
-      const double t = std::clamp((s - first) * inv_spacing, 0.0, nodes - 1.0);
-      const int i = std::min(static_cast<int>(t), nodes - 2);
+      const double t = std::clamp((s - first) * inv_spacing, 0.0, kDrawNodes - 1.0);
+      const int i = std::min(static_cast<int>(t), kDrawNodes - 2);
       const double f = t - i;
       codes(y, x) = (1.0 - f) * tabulated[i] + f * tabulated[i + 1];
     }

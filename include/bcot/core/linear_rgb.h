@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <opencv2/core.hpp>
 #include <string>
@@ -91,8 +92,20 @@ class LinearTable {
   // integers (an image's codes as a codec model predicts them): the linear value of a code in
   // [0, 255] (clamped), and the inverse, the code of a linear value (clamped to [0, 255]), so
   // that Decode(Encode(v)) = v for v in [table[0], 1].
-  double Decode(double code) const;
-  double Encode(double linear) const;
+  // Inline: the codec's simulations call them for every drawn node and sampled pixel.
+  double Decode(double code) const {
+    const double c = std::clamp(code, 0.0, 255.0);
+    const int k = std::min(static_cast<int>(c), 254);
+    return table_[k] + (c - k) * (table_[k + 1] - table_[k]);
+  }
+  double Encode(double linear) const {
+    if (!(linear > table_[0])) return 0.0;
+    if (linear >= table_[255]) return 255.0;
+    // table_[k] <= linear < table_[k + 1] (table_[255] = 1, so the bucket exists).
+    int k = bucket_code_[std::clamp(static_cast<int>(linear * kBuckets), 0, kBuckets - 1)];
+    while (table_[k + 1] <= linear) ++k;
+    return k + (linear - table_[k]) / (table_[k + 1] - table_[k]);
+  }
 
  private:
   // Encode's index: for each of kBuckets equal parts [b, b + 1) / kBuckets of [0, 1], the
