@@ -84,6 +84,26 @@ int SamplesPerSide(const EdgeLineOptions& options) {
   return static_cast<int>(std::floor(options.window_px / options.step_px + 1e-9));
 }
 
+// The run of a profile's samples (offsets first_offset_px + k·step_px, k in [0, n)) within
+// half_px of centre_px: [first, last], empty (last < first) when none is.
+struct SampleRun {
+  int first = 0;
+  int last = -1;
+  int size() const { return last - first + 1; }
+};
+
+SampleRun SamplesWithin(int n, double first_offset_px, double step_px, double centre_px,
+                        double half_px) {
+  SampleRun run{n, -1};
+  for (int k = 0; k < n; ++k) {
+    if (std::abs(first_offset_px + k * step_px - centre_px) <= half_px + 1e-9) {
+      run.first = std::min(run.first, k);
+      run.last = k;
+    }
+  }
+  return run;
+}
+
 }  // namespace
 
 bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
@@ -105,15 +125,10 @@ bool FitEdgeProfile(const std::vector<double>& values, double first_offset_px,
   }
   if (best < 0 || !(steepest < 0.0)) return false;
   const double mu0 = first_offset_px + best * h;
-  // The fit window: the samples within fit_half_px of μ0 (a contiguous run, offsets increase).
-  int first = n, last = -1;
-  for (int k = 0; k < n; ++k) {
-    if (std::abs(first_offset_px + k * h - mu0) <= options.fit_half_px + 1e-9) {
-      first = std::min(first, k);
-      last = k;
-    }
-  }
-  const int m = last - first + 1;
+  // The fit window: the samples within fit_half_px of μ0.
+  const SampleRun window = SamplesWithin(n, first_offset_px, h, mu0, options.fit_half_px);
+  const int first = window.first, last = window.last;
+  const int m = window.size();
   if (m < 8) return false;
   const Eigen::ArrayXd offsets = first_offset_px + h * Eigen::ArrayXd::LinSpaced(m, first, last);
   EdgeStepModel model(offsets, mu0, Eigen::Map<const Eigen::ArrayXd>(values.data() + first, m));
@@ -486,12 +501,9 @@ class SaturatedEdgeFit {
         channels_(std::move(channels)),
         simulator_(simulator),
         options_(options) {
-    const int half = static_cast<int>(observed.colors.size() / 2);
-    for (int k = 0; k < static_cast<int>(observed.colors.size()); ++k) {
-      if (std::abs((k - half) * options.step_px - centre_px) <= options.fit_half_px) {
-        window_.push_back(k);
-      }
-    }
+    const int n = static_cast<int>(observed.colors.size());
+    window_ = SamplesWithin(n, -(n / 2) * options.step_px, options.step_px, centre_px,
+                            options.fit_half_px);
   }
 
   void Run(const Eigen::Vector3d& observed_inside, const Eigen::Vector3d& observed_outside,
@@ -540,9 +552,9 @@ class SaturatedEdgeFit {
   // The observed minus the decoded drawing's samples over window_, all three channels.
   Eigen::VectorXd Residuals(const IdealEdge& edge) const {
     const EdgeLineSamples predicted = simulator_.SampleDecoded(simulator_.Draw(edge));
-    Eigen::VectorXd r(3 * window_.size());
-    for (size_t i = 0; i < window_.size(); ++i) {
-      r.segment<3>(3 * i) = observed_.colors[window_[i]] - predicted.colors[window_[i]];
+    Eigen::VectorXd r(3 * std::max(window_.size(), 0));
+    for (int k = window_.first; k <= window_.last; ++k) {
+      r.segment<3>(3 * (k - window_.first)) = observed_.colors[k] - predicted.colors[k];
     }
     return r;
   }
@@ -592,7 +604,7 @@ class SaturatedEdgeFit {
   }
 
   const EdgeLineSamples& observed_;
-  std::vector<int> window_;    // the samples within fit_half_px of the observed centre
+  SampleRun window_;           // the samples within fit_half_px of the observed centre
   std::vector<int> channels_;  // saturated on the inside
   const LineSimulator& simulator_;
   const EdgeLineOptions& options_;
